@@ -1,0 +1,74 @@
+#pragma once
+// Thin RAII layer over the HDF5 C API with the conventions of docs/hdf5.md:
+// every dataset carries a `units` attribute, intermediate groups are created on demand,
+// and a file being written lives under "<path>.tmp" until commit() renames it, so an
+// interrupted run never leaves a complete-looking file behind.
+#include <hdf5.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace phasmid::io {
+
+// Root attributes every phasmid HDF5 file carries.
+struct RunInfo {
+  std::string config_text;  // the full resolved config
+  std::string command;      // the command line
+};
+
+class H5Writer {
+ public:
+  explicit H5Writer(const std::string& path);
+  ~H5Writer();  // without commit(): closes and deletes the temporary file
+  H5Writer(const H5Writer&) = delete;
+  H5Writer& operator=(const H5Writer&) = delete;
+
+  void write_run_info(const RunInfo& info);  // phasmid_version, config, command, created
+
+  // Datasets; `dims` empty means 1-D of data.size(). Row-major for 2-D/3-D.
+  void write(const std::string& path, const std::vector<double>& data, const std::string& units,
+             std::vector<hsize_t> dims = {});
+  void write(const std::string& path, const std::vector<std::int64_t>& data, const std::string& units,
+             std::vector<hsize_t> dims = {});
+  void write(const std::string& path, const std::vector<std::string>& data);
+  void write_scalar(const std::string& path, double value, const std::string& units);
+  void write_string(const std::string& path, const std::string& value);
+
+  void set_attribute(const std::string& object_path, const std::string& name, const std::string& value);
+  void set_attribute(const std::string& object_path, const std::string& name, double value);
+  void ensure_group(const std::string& path);
+
+  void commit();  // flush, close, rename "<path>.tmp" -> "<path>"
+  hid_t id() const { return file_; }
+  const std::string& final_path() const { return path_; }
+
+ private:
+  std::string path_, tmp_path_;
+  hid_t file_ = -1;
+  bool committed_ = false;
+};
+
+class H5Reader {
+ public:
+  explicit H5Reader(const std::string& path);
+  ~H5Reader();
+  H5Reader(const H5Reader&) = delete;
+  H5Reader& operator=(const H5Reader&) = delete;
+
+  bool exists(const std::string& path) const;
+  std::vector<double> read_doubles(const std::string& path) const;
+  std::vector<hsize_t> dims(const std::string& path) const;
+  std::vector<std::string> read_strings(const std::string& path) const;
+  std::string read_string_attribute(const std::string& object_path, const std::string& name) const;
+  std::vector<std::string> children(const std::string& group_path) const;  // member names
+  bool is_group(const std::string& path) const;
+  hid_t id() const { return file_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  hid_t file_ = -1;
+};
+
+}  // namespace phasmid::io
