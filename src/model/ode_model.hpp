@@ -1,0 +1,87 @@
+#pragma once
+// A model assembled into one flat ODE system (AMICI's "Model"): named states, one vector of
+// named parameters, a right-hand side written once as a template and instantiated for
+// double (simulation), Jet<1> (directional derivatives: sensitivity right-hand sides) and
+// Jet<kJacobianChunk> (Jacobian columns in chunks). Time is in ms throughout.
+#include <ceres/jet.h>
+
+#include <string>
+#include <vector>
+
+#include "model/parameters.hpp"
+
+namespace phasmid::model {
+
+constexpr int kJacobianChunk = 8;
+using Jet1 = ceres::Jet<double, 1>;
+using JetK = ceres::Jet<double, kJacobianChunk>;
+
+struct StateInfo {
+  std::string name;  // e.g. "middle.fti.gamma", "middle.fti.cpg_ext.V"
+  std::string unit;  // unit of the state as integrated (rad, rad/ms, mV, 1, mN/mm^2)
+};
+
+// A joint angle of the model, for output in degrees and for gait features.
+struct AngleChannel {
+  std::string leg;    // front | middle | hind (or L1..R3)
+  std::string joint;  // thc | ctr | fti
+  size_t angle_state;     // index of the angle state (rad)
+  size_t velocity_state;  // index of its angular velocity (rad/ms)
+};
+
+class OdeModel {
+ public:
+  virtual ~OdeModel() = default;
+  virtual std::string kind() const = 0;
+
+  size_t num_states() const { return states_.size(); }
+  const std::vector<StateInfo>& states() const { return states_; }
+  size_t state_index(const std::string& name) const;
+  ParameterSet& parameters() { return params_; }
+  const ParameterSet& parameters() const { return params_; }
+  const std::vector<AngleChannel>& angles() const { return angles_; }
+
+  virtual std::vector<double> initial_state(const std::vector<double>& p) const = 0;
+  virtual void rhs(double t, const double* y, const double* p, double* ydot) const = 0;
+  virtual void rhs(double t, const Jet1* y, const Jet1* p, Jet1* ydot) const = 0;
+  virtual void rhs(double t, const JetK* y, const JetK* p, JetK* ydot) const = 0;
+
+  // Times (ms) at which the right-hand side changes discontinuously by a central command;
+  // the solver stops and restarts there instead of stepping across.
+  virtual std::vector<double> breakpoints(const std::vector<double>& p, double t_end) const {
+    (void)p; (void)t_end;
+    return {};
+  }
+
+  // Bandwidth (lower, upper) of the Jacobian when states are ordered as declared; -1 if dense.
+  virtual int jacobian_half_bandwidth() const { return -1; }
+
+ protected:
+  size_t add_state(std::string name, std::string unit);
+  std::vector<StateInfo> states_;
+  std::vector<AngleChannel> angles_;
+  ParameterSet params_;
+};
+
+// CRTP bridge: Derived implements one `template <class T> void eval(double t, const T* y,
+// const T* p, T* ydot) const`, and gets the three virtual instantiations.
+template <class Derived>
+class OdeModelT : public OdeModel {
+ public:
+  void rhs(double t, const double* y, const double* p, double* ydot) const override {
+    static_cast<const Derived*>(this)->eval(t, y, p, ydot);
+  }
+  void rhs(double t, const Jet1* y, const Jet1* p, Jet1* ydot) const override {
+    static_cast<const Derived*>(this)->eval(t, y, p, ydot);
+  }
+  void rhs(double t, const JetK* y, const JetK* p, JetK* ydot) const override {
+    static_cast<const Derived*>(this)->eval(t, y, p, ydot);
+  }
+};
+
+// Scalar value of a double or Jet (for branching on state values inside templates).
+inline double value_of(double x) { return x; }
+template <int N>
+double value_of(const ceres::Jet<double, N>& x) { return x.a; }
+
+}  // namespace phasmid::model

@@ -1,0 +1,329 @@
+#include "solver/simulator.hpp"
+
+#include <cvodes/cvodes.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_band.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_band.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+
+#include "common/error.hpp"
+
+namespace phasmid::solver {
+using model::Jet1;
+using model::JetK;
+using model::kJacobianChunk;
+using model::OdeModel;
+
+namespace {
+
+// Everything the C callbacks need; lives for one run().
+struct CallbackData {
+  const OdeModel* model;
+  const std::vector<double>* p;
+  const std::vector<RootSpec>* roots;
+  std::vector<size_t> sens_params;
+  size_t n;
+  std::vector<JetK> yK, pK, fK;
+  std::vector<Jet1> y1, p1, f1;
+  long sens_evals = 0;
+};
+
+int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* ud) {
+  auto* d = static_cast<CallbackData*>(ud);
+  d->model->rhs(t, N_VGetArrayPointer(y), d->p->data(), N_VGetArrayPointer(ydot));
+  for (size_t i = 0; i < d->n; ++i)
+    if (!std::isfinite(NV_Ith_S(ydot, i))) return 1;  // recoverable: CVODES retries a smaller step
+  return 0;
+}
+
+// Fills the dense column-major Jacobian `J` (n x n) by forward-mode AD in chunks of columns.
+void fill_jacobian(CallbackData* d, double t, const double* y, double* J) {
+  const size_t n = d->n;
+  for (size_t c0 = 0; c0 < n; c0 += kJacobianChunk) {
+    for (size_t i = 0; i < n; ++i) {
+      d->yK[i] = JetK(y[i]);
+      if (i >= c0 && i < c0 + kJacobianChunk) d->yK[i].v[i - c0] = 1.0;
+    }
+    d->model->rhs(t, d->yK.data(), d->pK.data(), d->fK.data());
+    for (size_t k = 0; k < kJacobianChunk && c0 + k < n; ++k)
+      for (size_t i = 0; i < n; ++i) J[(c0 + k) * n + i] = d->fK[i].v[k];
+  }
+}
+
+int jac_dense_cb(sunrealtype t, N_Vector y, N_Vector, SUNMatrix Jm, void* ud, N_Vector, N_Vector, N_Vector) {
+  auto* d = static_cast<CallbackData*>(ud);
+  fill_jacobian(d, t, N_VGetArrayPointer(y), SUNDenseMatrix_Data(Jm));
+  return 0;
+}
+
+int jac_band_cb(sunrealtype t, N_Vector y, N_Vector, SUNMatrix Jm, void* ud, N_Vector, N_Vector, N_Vector) {
+  auto* d = static_cast<CallbackData*>(ud);
+  std::vector<double> J(d->n * d->n);
+  fill_jacobian(d, t, N_VGetArrayPointer(y), J.data());
+  const long mu = SUNBandMatrix_UpperBandwidth(Jm), ml = SUNBandMatrix_LowerBandwidth(Jm);
+  for (long j = 0; j < static_cast<long>(d->n); ++j) {
+    sunrealtype* col = SUNBandMatrix_Column(Jm, j);
+    for (long i = std::max(0L, j - mu); i <= std::min<long>(d->n - 1, j + ml); ++i)
+      SM_COLUMN_ELEMENT_B(col, i, j) = J[j * d->n + i];
+  }
+  return 0;
+}
+
+// One sensitivity right-hand side: J s_is + df/dp_is, as a single directional derivative.
+int sens_rhs_cb(int, sunrealtype t, N_Vector y, N_Vector, int is, N_Vector yS, N_Vector ySdot, void* ud, N_Vector,
+                N_Vector) {
+  auto* d = static_cast<CallbackData*>(ud);
+  const double* yv = N_VGetArrayPointer(y);
+  const double* sv = N_VGetArrayPointer(yS);
+  for (size_t i = 0; i < d->n; ++i) {
+    d->y1[i] = Jet1(yv[i]);
+    d->y1[i].v[0] = sv[i];
+  }
+  size_t k = d->sens_params[is];
+  d->p1[k].v[0] = 1.0;
+  d->model->rhs(t, d->y1.data(), d->p1.data(), d->f1.data());
+  d->p1[k].v[0] = 0.0;
+  double* out = N_VGetArrayPointer(ySdot);
+  for (size_t i = 0; i < d->n; ++i) out[i] = d->f1[i].v[0];
+  ++d->sens_evals;
+  return 0;
+}
+
+int root_cb(sunrealtype, N_Vector y, sunrealtype* g, void* ud) {
+  auto* d = static_cast<CallbackData*>(ud);
+  const auto& roots = *d->roots;
+  for (size_t r = 0; r < roots.size(); ++r) g[r] = NV_Ith_S(y, roots[r].state) - roots[r].level;
+  return 0;
+}
+
+// RAII for the SUNDIALS objects of one run.
+struct CvodeHandles {
+  SUNContext ctx = nullptr;
+  void* mem = nullptr;
+  N_Vector y = nullptr;
+  N_Vector* yS = nullptr;
+  int ns = 0;
+  SUNMatrix A = nullptr;
+  SUNLinearSolver LS = nullptr;
+  ~CvodeHandles() {
+    if (mem) CVodeFree(&mem);
+    if (LS) SUNLinSolFree(LS);
+    if (A) SUNMatDestroy(A);
+    if (yS) N_VDestroyVectorArray(yS, ns);
+    if (y) N_VDestroy(y);
+    if (ctx) SUNContext_Free(&ctx);
+  }
+};
+
+void check_flag(int flag, const char* what) {
+  if (flag < 0) throw SolverError(std::string("CVODES setup failed in ") + what + " (flag " + std::to_string(flag) + ")");
+}
+
+}  // namespace
+
+Simulator::Simulator(const OdeModel& model, SolverOptions options) : model_(model), options_(options) {}
+
+std::vector<double> output_grid(double t_end, double dt) {
+  if (!(dt > 0) || !(t_end > 0)) throw Error("output grid needs t_end > 0 and dt > 0");
+  std::vector<double> t;
+  size_t n = static_cast<size_t>(std::floor(t_end / dt + 1e-9));
+  for (size_t k = 0; k <= n; ++k) t.push_back(k * dt);
+  if (t_end - t.back() > 1e-9) t.push_back(t_end);
+  return t;
+}
+
+std::vector<double> jacobian_autodiff(const OdeModel& model, double t, const std::vector<double>& y,
+                                      const std::vector<double>& p) {
+  CallbackData d;
+  d.model = &model;
+  d.p = &p;
+  d.n = model.num_states();
+  d.yK.resize(d.n);
+  d.fK.resize(d.n);
+  for (double v : p) d.pK.emplace_back(v);
+  std::vector<double> J(d.n * d.n);
+  fill_jacobian(&d, t, y.data(), J.data());
+  return J;
+}
+
+SolveResult Simulator::run(const std::vector<double>& p, const std::vector<double>& output_times,
+                           const std::vector<RootSpec>& roots, const std::vector<size_t>& sens_params) const {
+  auto wall0 = std::chrono::steady_clock::now();
+  const size_t n = model_.num_states();
+  if (p.size() != model_.parameters().size()) throw Error("internal: parameter vector size mismatch");
+  if (output_times.empty() || output_times.front() < 0) throw Error("output times must start at t >= 0");
+  const size_t ns = sens_params.size();
+
+  CallbackData d;
+  d.model = &model_;
+  d.p = &p;
+  d.roots = &roots;
+  d.sens_params = sens_params;
+  d.n = n;
+  d.yK.resize(n);
+  d.fK.resize(n);
+  d.y1.resize(n);
+  d.f1.resize(n);
+  for (double v : p) {
+    d.pK.emplace_back(v);
+    d.p1.emplace_back(v);
+  }
+
+  CvodeHandles h;
+  check_flag(SUNContext_Create(nullptr, &h.ctx), "SUNContext_Create");
+  h.y = N_VNew_Serial(n, h.ctx);
+  std::vector<double> y0 = model_.initial_state(p);
+  for (size_t i = 0; i < n; ++i) NV_Ith_S(h.y, i) = y0[i];
+  h.mem = CVodeCreate(CV_BDF, h.ctx);
+  if (!h.mem) throw SolverError("CVodeCreate failed");
+  const double t0 = 0.0;
+  check_flag(CVodeInit(h.mem, rhs_cb, t0, h.y), "CVodeInit");
+  check_flag(CVodeSStolerances(h.mem, options_.rtol, options_.atol), "CVodeSStolerances");
+  check_flag(CVodeSetUserData(h.mem, &d), "CVodeSetUserData");
+  check_flag(CVodeSetMaxNumSteps(h.mem, options_.max_steps), "CVodeSetMaxNumSteps");
+  check_flag(CVodeSetErrHandlerFn(h.mem, [](int, const char*, const char*, char*, void*) {}, nullptr), "silence");
+  if (options_.max_step_ms > 0) check_flag(CVodeSetMaxStep(h.mem, options_.max_step_ms), "CVodeSetMaxStep");
+
+  int bw = model_.jacobian_half_bandwidth();
+  bool band = options_.linear_solver == LinearSolverKind::Band && bw >= 0;
+  if (band) {
+    h.A = SUNBandMatrix(n, bw, bw, h.ctx);
+    h.LS = SUNLinSol_Band(h.y, h.A, h.ctx);
+  } else {
+    h.A = SUNDenseMatrix(n, n, h.ctx);
+    h.LS = SUNLinSol_Dense(h.y, h.A, h.ctx);
+  }
+  check_flag(CVodeSetLinearSolver(h.mem, h.LS, h.A), "CVodeSetLinearSolver");
+  if (options_.jacobian == JacobianKind::AutoDiff)
+    check_flag(CVodeSetJacFn(h.mem, band ? jac_band_cb : jac_dense_cb), "CVodeSetJacFn");
+
+  if (ns > 0) {
+    h.ns = static_cast<int>(ns);
+    h.yS = N_VCloneVectorArray(h.ns, h.y);
+    for (int j = 0; j < h.ns; ++j) N_VConst(0.0, h.yS[j]);  // initial state independent of p
+    int method = options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS;
+    check_flag(CVodeSensInit1(h.mem, h.ns, method, sens_rhs_cb, h.yS), "CVodeSensInit1");
+    std::vector<double> pbar(ns);
+    for (size_t j = 0; j < ns; ++j) pbar[j] = std::abs(p[sens_params[j]]) > 0 ? std::abs(p[sens_params[j]]) : 1.0;
+    check_flag(CVodeSetSensParams(h.mem, nullptr, pbar.data(), nullptr), "CVodeSetSensParams");
+    check_flag(CVodeSensEEtolerances(h.mem), "CVodeSensEEtolerances");
+    check_flag(CVodeSetSensErrCon(h.mem, options_.sensitivity_error_control ? SUNTRUE : SUNFALSE), "CVodeSetSensErrCon");
+  }
+  std::vector<int> dirs;
+  for (auto& r : roots) dirs.push_back(r.direction);
+  if (!roots.empty()) {
+    check_flag(CVodeRootInit(h.mem, static_cast<int>(roots.size()), root_cb), "CVodeRootInit");
+    check_flag(CVodeSetRootDirection(h.mem, dirs.data()), "CVodeSetRootDirection");
+    CVodeSetNoInactiveRootWarn(h.mem);
+  }
+
+  const double t_end = output_times.back();
+  std::vector<double> breaks = model_.breakpoints(p, t_end);
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double b) { return b <= t0 || b >= t_end; }),
+               breaks.end());
+  breaks.push_back(t_end);
+  size_t next_break = 0;
+  check_flag(CVodeSetStopTime(h.mem, breaks[0]), "CVodeSetStopTime");
+
+  SolveResult res;
+  res.n_states = n;
+  res.sens_params = sens_params;
+  std::vector<int> rootsfound(roots.size());
+  const bool show_progress = options_.progress && isatty(STDERR_FILENO);
+  auto last_print = std::chrono::steady_clock::now();
+  std::vector<double> ydot(n);
+
+  auto record_output = [&](double t) {
+    res.t.push_back(t);
+    for (size_t i = 0; i < n; ++i) res.y.push_back(NV_Ith_S(h.y, i));
+    if (ns) {
+      for (size_t i = 0; i < n; ++i)
+        for (size_t j = 0; j < ns; ++j) res.s.push_back(NV_Ith_S(h.yS[j], i));
+    }
+  };
+
+  double t = t0;
+  size_t k_out = 0;
+  if (output_times[0] <= t0) {
+    record_output(t0);
+    k_out = 1;
+  }
+  while (k_out < output_times.size()) {
+    double tout = output_times[k_out];
+    int flag = CVode(h.mem, tout, h.y, &t, CV_NORMAL);
+    if (flag < 0) {
+      std::ostringstream os;
+      os << "CVODES failed at t = " << t << " ms: " << CVodeGetReturnFlagName(flag)
+         << " (try --set on the offending parameter, or tighter tolerances)";
+      throw SolverError(os.str());
+    }
+    if (ns && (flag == CV_SUCCESS || flag == CV_ROOT_RETURN || flag == CV_TSTOP_RETURN))
+      check_flag(CVodeGetSens(h.mem, &t, h.yS), "CVodeGetSens");
+    if (flag == CV_ROOT_RETURN) {
+      check_flag(CVodeGetRootInfo(h.mem, rootsfound.data()), "CVodeGetRootInfo");
+      model_.rhs(t, N_VGetArrayPointer(h.y), p.data(), ydot.data());
+      for (size_t r = 0; r < roots.size(); ++r) {
+        if (!rootsfound[r]) continue;
+        Event e;
+        e.t = t;
+        e.root = r;
+        e.direction = rootsfound[r];
+        e.y.assign(N_VGetArrayPointer(h.y), N_VGetArrayPointer(h.y) + n);
+        e.ydot = ydot;
+        if (ns) {
+          e.s.resize(n * ns);
+          for (size_t i = 0; i < n; ++i)
+            for (size_t j = 0; j < ns; ++j) e.s[i * ns + j] = NV_Ith_S(h.yS[j], i);
+        }
+        res.events.push_back(std::move(e));
+      }
+    }
+    if (flag == CV_TSTOP_RETURN && next_break + 1 < breaks.size() && std::abs(t - breaks[next_break]) < 1e-9) {
+      // The right-hand side changes here: restart the integrator from the current state.
+      // Sensitivities are continuous across such fixed-time switches (the switch time does
+      // not depend on the parameters), so they are carried over unchanged.
+      check_flag(CVodeReInit(h.mem, t, h.y), "CVodeReInit");
+      if (ns) check_flag(CVodeSensReInit(h.mem, options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS, h.yS), "CVodeSensReInit");
+      ++next_break;
+      check_flag(CVodeSetStopTime(h.mem, breaks[next_break]), "CVodeSetStopTime");
+      ++res.stats.restarts;
+    }
+    if (std::abs(t - tout) < 1e-9 * std::max(1.0, std::abs(tout))) {
+      record_output(tout);
+      ++k_out;
+    }
+    if (show_progress) {
+      auto now = std::chrono::steady_clock::now();
+      if (now - last_print > std::chrono::milliseconds(200)) {
+        std::fprintf(stderr, "\r%s: t = %.0f / %.0f ms (%3.0f%%)", options_.progress_label.c_str(), t, t_end,
+                     100.0 * t / t_end);
+        last_print = now;
+      }
+    }
+  }
+  if (show_progress) std::fprintf(stderr, "\r%s: t = %.0f / %.0f ms (100%%)\n", options_.progress_label.c_str(), t_end, t_end);
+
+  long v = 0;
+  CVodeGetNumSteps(h.mem, &v);
+  res.stats.steps = v;
+  CVodeGetNumRhsEvals(h.mem, &v);
+  res.stats.rhs_evals = v;
+  CVodeGetNumJacEvals(h.mem, &v);
+  res.stats.jac_evals = v;
+  res.stats.sens_rhs_evals = d.sens_evals;
+  res.stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return res;
+}
+
+}  // namespace phasmid::solver
