@@ -1,0 +1,37 @@
+#pragma once
+// Assembles networks of Knops (2013) Section 2.5 into a NetworkModel: the neuron-class
+// constants of Tables A.1-A.9, and the single-joint network of Fig. 2.12 (8 neurons,
+// 26 equations). Names: "<leg>.<joint>.<neuron>.<parameter>", neuron classes "cpg.*",
+// "interneuron.*", "mn.*", synapse classes "syn.<class>.*", muscle activation "muscle.*".
+#include <memory>
+#include <string>
+
+#include "model/network_model.hpp"
+
+namespace phasmid::model {
+
+// Indices of the class-level parameters shared by all joints (defined once per model).
+struct NeuronClasses {
+  NapIdx cpg_shared, in_mn, sens_inh, sens_exc, sens_exc_ld;  // g_app/epsilon/C_m filled per neuron
+  MotoneuronIdx mn;
+  SynapseIdx cpg_cpg, in_cpg_inh, in_cpg_exc, in_mn_syn, cpg_in;
+};
+NeuronClasses define_neuron_classes(NetworkModel& m);
+
+// Neuron indices of one joint network (Fig. 2.12), by function. For each joint the "inc"
+// muscle increases the angle (retractor, levator, flexor), the "dec" muscle decreases it;
+// the sensory pathway excites the inc CPG (sens_exc, IN4/IN8/IN12) and inhibits the dec
+// CPG (sens_inh, IN3/IN7/IN11).
+struct JointNetwork {
+  std::string prefix;
+  size_t cpg_inc, cpg_dec, in_inc, in_dec, sens_exc, sens_inh, mn_inc, mn_dec;
+  size_t joint;
+};
+
+JointNetwork add_joint_network(NetworkModel& m, const NeuronClasses& c, const std::string& leg, JointType type,
+                               double angle0_deg, const std::string& thc_set = "");
+
+std::unique_ptr<NetworkModel> build_single_joint_model(const std::string& leg, JointType type,
+                                                       const std::string& thc_set = "");
+
+}  // namespace phasmid::model

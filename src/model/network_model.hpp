@@ -1,0 +1,180 @@
+#pragma once
+// The neuro-mechanical network (Knops 2013 Section 2.5): NaP interneurons and CPG neurons,
+// Hodgkin-Huxley motoneurons, sigmoid synapses, spike-driven muscle activation and joint
+// mechanics, assembled as data (lists of components holding parameter and state indices)
+// and evaluated by one templated right-hand side.
+//
+// Two smooth formulations replace switches of the dissertation (docs/model.md):
+//  - muscle activation: the spring constant follows (2.83) "during an action potential" and
+//    (2.84) otherwise; "during an action potential" is the sigmoid S(V_MN) of the motoneuron
+//    voltage (midpoint muscle.V_spike, width muscle.spike_width) instead of a hard test;
+//  - sensory thresholds (beta < beta_thr, gamma > gamma_thr): sigmoids of width `*.width_deg`.
+// Both converge to the switched model as the widths go to zero; they keep the right-hand
+// side differentiable so that CVODES sensitivities need no jump conditions.
+#include <string>
+#include <vector>
+
+#include "model/joint.hpp"
+#include "model/neurons.hpp"
+#include "model/ode_model.hpp"
+
+namespace phasmid::model {
+
+struct NapIdx {  // parameter indices of a NaP neuron (Section 2.1)
+  size_t C_m, epsilon, g_NaP, E_Na, V_hm, gamma_m, V_hh, gamma_h, V_tau_h, gamma_tau, g_L, E_L, g_app, E_app;
+};
+struct MotoneuronIdx {  // parameter indices of a motoneuron (Section 2.2), same order as MotoneuronParams
+  size_t v[32];
+};
+struct SynapseIdx { size_t g, V_h, gamma, E; };
+
+struct Neuron {
+  std::string name;   // "middle.fti.cpg_flx"
+  bool motoneuron;
+  size_t state;       // first state (V)
+  NapIdx nap{};
+  MotoneuronIdx mn{};
+};
+
+struct Synapse {
+  size_t pre, post;  // neuron indices
+  SynapseIdx q;
+};
+
+// A condition of a sensory or central switch; all conditions of a Modulation multiply.
+struct Condition {
+  enum Kind { AngleBelow, AngleAbove, TimeAfter } kind;
+  size_t angle_state = 0;  // rad (AngleBelow/AngleAbove)
+  size_t threshold = 0;    // parameter: deg, or ms for TimeAfter
+  size_t width = 0;        // parameter: deg (sigmoid width)
+};
+
+// Adds p[delta] (nS) to a neuron's applied conductance while the conditions hold.
+struct Modulation {
+  size_t neuron;
+  size_t delta;
+  std::vector<Condition> conditions;
+};
+
+struct Muscle {
+  size_t motoneuron;   // neuron index
+  size_t activation;   // state index of the activation a in [0, 1]
+  size_t k_rest, k_active;  // parameters: spring constant at a = 0 and a = 1 (mN/mm^2)
+};
+
+struct Joint {
+  JointMechanics mech;
+  std::string leg;
+  size_t angle_state, velocity_state;
+  size_t muscle_inc, muscle_dec;  // muscle indices
+  size_t angle0;                  // parameter: initial angle (deg)
+};
+
+class NetworkModel : public OdeModelT<NetworkModel> {
+ public:
+  explicit NetworkModel(std::string kind) : kind_(std::move(kind)) {}
+  std::string kind() const override { return kind_; }
+
+  // ---- assembly -------------------------------------------------------------------------
+  size_t define(Parameter p) { return params_.add(std::move(p)); }
+  size_t add_nap_neuron(const std::string& name, const NapIdx& q, double V0, double h0);
+  size_t add_motoneuron(const std::string& name, const MotoneuronIdx& q);
+  void add_synapse(size_t pre, size_t post, const SynapseIdx& q) { synapses_.push_back({pre, post, q}); }
+  void add_modulation(Modulation m) { modulations_.push_back(std::move(m)); }
+  size_t add_muscle(size_t motoneuron, size_t k_rest, size_t k_active, const std::string& name);
+  size_t add_joint(const std::string& leg, const JointMechanics& mech, size_t muscle_inc, size_t muscle_dec,
+                   double angle0_deg);
+  void set_muscle_activation_params(size_t a0, size_t b, size_t V_spike, size_t width) {
+    act_a0_ = a0; act_b_ = b; act_V_ = V_spike; act_w_ = width;
+  }
+  size_t neuron_index(const std::string& name) const;
+  const std::vector<Neuron>& neurons() const { return neurons_; }
+  const std::vector<Joint>& joints() const { return joints_; }
+  const std::vector<Muscle>& muscles() const { return muscles_; }
+
+  std::vector<double> initial_state(const std::vector<double>& p) const override;
+  std::vector<double> breakpoints(const std::vector<double>& p, double t_end) const override;
+
+  template <class T>
+  void eval(double t, const T* y, const T* p, T* ydot) const;
+
+ private:
+  std::string kind_;
+  std::vector<Neuron> neurons_;
+  std::vector<Synapse> synapses_;
+  std::vector<Modulation> modulations_;
+  std::vector<Muscle> muscles_;
+  std::vector<Joint> joints_;
+  std::vector<double> y0_;  // default initial state of neurons and muscles
+  size_t act_a0_ = 0, act_b_ = 0, act_V_ = 0, act_w_ = 0;
+};
+
+template <class T>
+T smooth_step(const T& x, const T& width) {
+  using std::exp;
+  return T(1.0) / (T(1.0) + exp(-x / width));
+}
+
+template <class T>
+void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
+  constexpr double kRadToDeg = 180.0 / M_PI;
+  thread_local std::vector<T> I_syn, g_extra;
+  I_syn.assign(neurons_.size(), T(0.0));
+  g_extra.assign(neurons_.size(), T(0.0));
+
+  for (const Synapse& s : synapses_) {
+    const T& V_pre = y[neurons_[s.pre].state];
+    const T& V_post = y[neurons_[s.post].state];
+    I_syn[s.post] += synaptic_current(p[s.q.g], p[s.q.V_h], p[s.q.gamma], p[s.q.E], V_pre, V_post);
+  }
+  for (const Modulation& m : modulations_) {
+    T gate(1.0);
+    for (const Condition& c : m.conditions) {
+      switch (c.kind) {
+        case Condition::AngleBelow:
+          gate *= smooth_step(T(p[c.threshold] - y[c.angle_state] * kRadToDeg), p[c.width]);
+          break;
+        case Condition::AngleAbove:
+          gate *= smooth_step(T(y[c.angle_state] * kRadToDeg - p[c.threshold]), p[c.width]);
+          break;
+        case Condition::TimeAfter:  // central command: a step at a fixed time (a breakpoint)
+          if (t < value_of(p[c.threshold])) gate = T(0.0);
+          break;
+      }
+    }
+    g_extra[m.neuron] += p[m.delta] * gate;
+  }
+  for (size_t i = 0; i < neurons_.size(); ++i) {
+    const Neuron& n = neurons_[i];
+    if (n.motoneuron) {
+      MotoneuronParams<T> q;
+      T* f = &q.C_m;
+      for (int k = 0; k < 32; ++k) f[k] = p[n.mn.v[k]];
+      q.g_app += g_extra[i];
+      motoneuron_rhs(q, &y[n.state], I_syn[i], &ydot[n.state]);
+    } else {
+      const NapIdx& x = n.nap;
+      NapNeuronParams<T> q{p[x.C_m], p[x.epsilon], p[x.g_NaP], p[x.E_Na], p[x.V_hm], p[x.gamma_m], p[x.V_hh],
+                           p[x.gamma_h], p[x.V_tau_h], p[x.gamma_tau], p[x.g_L], p[x.E_L], p[x.g_app] + g_extra[i],
+                           p[x.E_app]};
+      nap_neuron_rhs(q, y[n.state], y[n.state + 1], I_syn[i], ydot[n.state], ydot[n.state + 1]);
+    }
+  }
+  // Spike-driven activation, eqs. (2.83)/(2.84) in terms of a = (k - k_rest)/(k_active - k_rest).
+  for (const Muscle& m : muscles_) {
+    const T& a = y[m.activation];
+    T S = smooth_step(T(y[neurons_[m.motoneuron].state] - p[act_V_]), p[act_w_]);
+    ydot[m.activation] = (p[act_a0_] + p[act_b_]) * S * (1.0 - a) - p[act_b_] * (1.0 - S) * a;
+  }
+  for (const Joint& j : joints_) {
+    const Muscle& mi = muscles_[j.muscle_inc];
+    const Muscle& md = muscles_[j.muscle_dec];
+    T k_inc = p[mi.k_rest] + (p[mi.k_active] - p[mi.k_rest]) * y[mi.activation];
+    T k_dec = p[md.k_rest] + (p[md.k_active] - p[md.k_rest]) * y[md.activation];
+    ydot[j.angle_state] = y[j.velocity_state] * 1e-3;  // rad/s -> rad/ms
+    ydot[j.velocity_state] =
+        joint_acceleration(j.mech, p, y[j.angle_state], y[j.velocity_state], k_inc, k_dec) * 1e-3;
+  }
+}
+
+}  // namespace phasmid::model
