@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# CLI contract: bad input gives exit != 0, one line on stderr naming file/line/parameter, and
+# no output file left behind.
+set -u
+PHASMID="$1"; SRC="$2"
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+fail=0; pass=0
+expect_error() {  # description, expected substring, command...
+  local desc="$1" want="$2"; shift 2
+  "$@" >"$tmp/out" 2>"$tmp/err"; local rc=$?
+  local lines; lines=$(wc -l <"$tmp/err")
+  if [ $rc -eq 0 ] || ! grep -q -- "$want" "$tmp/err" || [ "$lines" -ne 1 ]; then
+    echo "FAIL: $desc (rc=$rc, stderr: $(cat "$tmp/err"))"; fail=$((fail+1))
+  else pass=$((pass+1)); fi
+}
+expect_error "unknown --set parameter" "unknown parameter 'middle.fti.bv'" \
+  "$PHASMID" simulate "$SRC/configs/fti_mechanical.toml" --set middle.fti.bv=3 -o "$tmp/a.h5" -q
+[ -e "$tmp/a.h5" ] || [ -e "$tmp/a.h5.tmp" ] && { echo "FAIL: output left behind"; fail=$((fail+1)); }
+expect_error "impossible value" "impossible value -1" \
+  "$PHASMID" simulate "$SRC/configs/fti_mechanical.toml" --set middle.fti.b_v=-1 -o "$tmp/b.h5" -q
+printf '[model]\ntype = "mechanical_joint"\n[simulation\nt_end_ms = 5\n' >"$tmp/bad.toml"
+expect_error "malformed config names file:line" "bad.toml:3" "$PHASMID" simulate "$tmp/bad.toml" -o "$tmp/c.h5"
+printf '[model]\ntype = "mechanical_joint"\n[parameters]\n"middle.fti.nope" = 1\n' >"$tmp/unk.toml"
+expect_error "unknown parameter in config names file:line" "unk.toml:4" "$PHASMID" params "$tmp/unk.toml"
+expect_error "missing config" "no such config" "$PHASMID" params "$tmp/missing.toml"
+expect_error "ratios bad angle" "not a number" "$PHASMID" ratios --joint fti --angles 45,x
+expect_error "solver failure is reported" "CVODES failed" \
+  "$PHASMID" simulate "$SRC/configs/fti_mechanical.toml" --set middle.fti.l_E0=0.1 -o "$tmp/d.h5" -q
+[ -e "$tmp/d.h5" ] && { echo "FAIL: output left after solver failure"; fail=$((fail+1)); }
+# and the good path: ratios JSON carries the required fields
+out=$("$PHASMID" ratios --joint fti --angles 45,110 --json)
+echo "$out" | grep -q '"angle_deg": 45' && echo "$out" | grep -q '"ratio"' && echo "$out" | grep -q '"joint": "fti"' \
+  && pass=$((pass+1)) || { echo "FAIL: ratios --json fields"; fail=$((fail+1)); }
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]
