@@ -1,0 +1,52 @@
+// phasmid features RUN.h5 [--json]: the gait features stored by `simulate` under /features.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "app/verb.hpp"
+#include "common/error.hpp"
+#include "features/features.hpp"
+#include "io/h5_file.hpp"
+
+namespace phasmid::app {
+namespace {
+
+int run_features(const std::string& path, bool json) {
+  io::H5Reader in(path);  // throws "no such file" / "not an HDF5 file"
+  if (!in.exists("/") || [&] {
+        try {
+          in.read_string_attribute("/", "phasmid_version");
+          return false;
+        } catch (const Error&) {
+          return true;
+        }
+      }())
+    throw Error(path + ": not a phasmid file (no phasmid_version attribute)");
+  std::vector<features::Feature> fs = features::read_features_h5(in);
+  if (json) {
+    nlohmann::json out = nlohmann::json::array();
+    for (auto& f : fs)
+      out.push_back({{"name", f.name}, {"value", std::isfinite(f.value) ? nlohmann::json(f.value) : nlohmann::json()},
+                     {"unit", f.unit}});
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  size_t w = 7;
+  for (auto& f : fs) w = std::max(w, f.name.size());
+  std::printf("%-*s  %14s  %s\n", static_cast<int>(w), "feature", "value", "unit");
+  for (auto& f : fs) std::printf("%-*s  %14.6g  %s\n", static_cast<int>(w), f.name.c_str(), f.value, f.unit.c_str());
+  return 0;
+}
+
+const RegisterVerb reg{{"features", "print the gait features of a run (period, phase durations and ratios, extremal angles)",
+                        [](CLI::App& sub) -> std::function<int()> {
+                          auto path = std::make_shared<std::string>();
+                          auto json = std::make_shared<bool>(false);
+                          sub.add_option("RUN", *path, "HDF5 file written by phasmid simulate")->required();
+                          sub.add_flag("--json", *json, "print a JSON list of {name, value, unit}");
+                          return [path, json] { return run_features(*path, *json); };
+                        }}};
+
+}  // namespace
+}  // namespace phasmid::app

@@ -1,0 +1,216 @@
+#include "sensitivity/sensitivity.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "common/error.hpp"
+#include "io/h5_file.hpp"
+
+namespace phasmid::sensitivity {
+
+Method parse_method(const std::string& s) {
+  if (s == "forward") return Method::Forward;
+  if (s == "fd") return Method::FiniteDifference;
+  throw Error("unknown sensitivity method '" + s + "' (expected forward or fd)");
+}
+
+const char* method_name(Method m) { return m == Method::Forward ? "forward" : "fd"; }
+
+size_t SensitivityReport::feature_index(const std::string& name) const {
+  for (size_t i = 0; i < features.size(); ++i)
+    if (features[i].name == name) return i;
+  throw Error("no feature '" + name + "' in the sensitivity report");
+}
+
+bool parameter_moves_switches_or_initial_state(const model::OdeModel& model, const std::vector<double>& p, size_t k,
+                                               double t_end) {
+  std::vector<double> q = p;
+  q[k] = p[k] + 1e-6 * std::max(std::abs(p[k]), 1e-3);
+  if (model.initial_state(p) != model.initial_state(q)) return true;
+  std::vector<double> b0 = model.breakpoints(p, t_end), b1 = model.breakpoints(q, t_end);
+  std::sort(b0.begin(), b0.end());
+  std::sort(b1.begin(), b1.end());
+  return b0 != b1;
+}
+
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct FdColumn {
+  std::vector<double> dfeature;  // per nominal feature (NaN if missing in a perturbed run)
+  std::vector<double> dy;        // n_time x n_states
+};
+
+FdColumn fd_column(const solver::Simulator& sim, const std::vector<double>& p, size_t k, const std::vector<double>& grid,
+                   const std::vector<solver::RootSpec>& roots, const model::OdeModel& model,
+                   const features::FeatureOptions& fopt, const std::vector<features::Feature>& nominal,
+                   const SensitivityOptions& opt, long& runs) {
+  const double h = opt.fd_relative_step * std::max(std::abs(p[k]), opt.fd_min_scale);
+  std::vector<double> pp = p, pm = p;
+  pp[k] += h;
+  pm[k] -= h;
+  solver::SolveResult rp = sim.run(pp, grid, roots), rm = sim.run(pm, grid, roots);
+  runs += 2;
+  auto fp = features::compute_features(model, rp, fopt), fm = features::compute_features(model, rm, fopt);
+  auto find = [](const std::vector<features::Feature>& fs, const std::string& name) {
+    for (auto& f : fs)
+      if (f.name == name) return f.value;
+    return kNaN;
+  };
+  FdColumn col;
+  for (auto& f : nominal) col.dfeature.push_back((find(fp, f.name) - find(fm, f.name)) / (2 * h));
+  if (opt.write_trajectory) {
+    col.dy.resize(rp.y.size());
+    for (size_t i = 0; i < rp.y.size(); ++i) col.dy[i] = (rp.y[i] - rm.y[i]) / (2 * h);
+  }
+  return col;
+}
+
+}  // namespace
+
+SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vector<double> p,
+                                        const SensitivityOptions& opt) {
+  auto wall0 = std::chrono::steady_clock::now();
+  const auto& ps = model.parameters();
+  if (p.size() != ps.size()) throw Error("internal: parameter vector size mismatch");
+  SensitivityReport rep;
+  rep.method = opt.method;
+  std::vector<size_t> idx;
+  if (opt.parameters.empty()) {
+    idx.resize(ps.size());
+    std::iota(idx.begin(), idx.end(), 0);
+  } else {
+    for (auto& name : opt.parameters) idx.push_back(ps.index(name));  // throws naming an unknown parameter
+  }
+  if (idx.empty()) throw Error("sensitivity analysis needs at least one parameter");
+  const size_t np = idx.size(), n = model.num_states();
+  for (size_t k : idx) {
+    rep.parameters.push_back(ps.at(k).name);
+    rep.parameter_units.push_back(ps.at(k).unit);
+    rep.parameter_values.push_back(p[k]);
+  }
+
+  const std::vector<double> grid = solver::output_grid(opt.t_end_ms, opt.output_dt_ms);
+  const std::vector<solver::RootSpec> roots = features::feature_roots(model);
+  features::FeatureOptions fopt = opt.feature_options;
+  fopt.discard_ms = opt.discard_ms;
+  fopt.root_offset = 0;
+  solver::Simulator sim(model, opt.solver);
+
+  // Columns done by forward sensitivities, the rest by finite differences.
+  std::vector<size_t> fwd_cols, fd_cols;
+  for (size_t j = 0; j < np; ++j) {
+    bool fd = opt.method == Method::FiniteDifference ||
+              parameter_moves_switches_or_initial_state(model, p, idx[j], opt.t_end_ms);
+    (fd ? fd_cols : fwd_cols).push_back(j);
+    rep.parameter_method.push_back(fd ? "fd" : "forward");
+  }
+  std::vector<size_t> fwd_params;
+  for (size_t j : fwd_cols) fwd_params.push_back(idx[j]);
+
+  solver::SolveResult nominal = sim.run(p, grid, roots, fwd_params);
+  rep.stats = nominal.stats;
+  rep.features = features::compute_features(model, nominal, fopt);
+  const size_t nf = rep.features.size();
+  rep.absolute = Eigen::MatrixXd::Constant(nf, np, kNaN);
+  rep.time = nominal.t;
+  for (auto& s : model.states()) {
+    rep.state_names.push_back(s.name);
+    rep.state_units.push_back(s.unit);
+  }
+  rep.states = nominal.y;
+  const size_t nt = nominal.t.size();
+  if (opt.write_trajectory) rep.trajectory.assign(nt * n * np, 0.0);
+
+  if (!fwd_cols.empty()) {
+    auto grads = features::compute_feature_gradients(model, nominal, fopt);
+    if (grads.size() != nf) throw Error("internal: feature gradients do not match the features");
+    for (size_t f = 0; f < nf; ++f)
+      for (size_t c = 0; c < fwd_cols.size(); ++c) rep.absolute(f, fwd_cols[c]) = grads[f].gradient[c];
+    if (opt.write_trajectory)
+      for (size_t k = 0; k < nt; ++k)
+        for (size_t i = 0; i < n; ++i)
+          for (size_t c = 0; c < fwd_cols.size(); ++c)
+            rep.trajectory[(k * n + i) * np + fwd_cols[c]] = nominal.sens(k, i, c);
+  }
+  for (size_t j : fd_cols) {
+    FdColumn col = fd_column(sim, p, idx[j], grid, roots, model, fopt, rep.features, opt, rep.fd_runs);
+    for (size_t f = 0; f < nf; ++f) rep.absolute(f, j) = col.dfeature[f];
+    if (opt.write_trajectory) {
+      if (col.dy.size() != nt * n) throw Error("internal: finite-difference trajectory has a different length");
+      for (size_t k = 0; k < nt; ++k)
+        for (size_t i = 0; i < n; ++i) rep.trajectory[(k * n + i) * np + j] = col.dy[k * n + i];
+    }
+  }
+
+  rep.relative = Eigen::MatrixXd::Constant(nf, np, kNaN);
+  for (size_t f = 0; f < nf; ++f) {
+    const double F = rep.features[f].value;
+    for (size_t j = 0; j < np; ++j)
+      if (F != 0.0) rep.relative(f, j) = rep.parameter_values[j] / F * rep.absolute(f, j);
+    std::vector<size_t> order(np);
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+      double ra = std::abs(rep.relative(f, a)), rb = std::abs(rep.relative(f, b));
+      if (std::isnan(ra)) return false;
+      if (std::isnan(rb)) return true;
+      return ra > rb;
+    });
+    std::vector<std::string> names;
+    for (size_t j : order) names.push_back(rep.parameters[j]);
+    rep.ranking.push_back(std::move(names));
+  }
+  rep.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return rep;
+}
+
+void write_sensitivity_h5(io::H5Writer& out, const SensitivityReport& rep) {
+  const size_t np = rep.parameters.size();
+  out.ensure_group("/sensitivity");
+  out.set_attribute("/sensitivity", "method", std::string(method_name(rep.method)));
+  out.write("/sensitivity/parameters", rep.parameters);
+  out.write("/sensitivity/parameter_units", rep.parameter_units);
+  out.write("/sensitivity/parameter_method", rep.parameter_method);
+  out.write("/sensitivity/parameter_values", rep.parameter_values, "see /sensitivity/parameter_units");
+  std::vector<std::string> fnames, funits;
+  std::vector<double> fvalues;
+  for (auto& f : rep.features) {
+    fnames.push_back(f.name);
+    funits.push_back(f.unit);
+    fvalues.push_back(f.value);
+  }
+  out.write("/sensitivity/feature_names", fnames);
+  out.write("/sensitivity/feature_units", funits);
+  out.write("/sensitivity/feature_values", fvalues, "see /sensitivity/feature_units");
+  for (size_t f = 0; f < rep.features.size(); ++f) {
+    const auto& feat = rep.features[f];
+    std::vector<double> abs(np), rel(np);
+    std::vector<std::string> units(np);
+    for (size_t j = 0; j < np; ++j) {
+      abs[j] = rep.absolute(f, j);
+      rel[j] = rep.relative(f, j);
+      units[j] = feat.unit + "/(" + rep.parameter_units[j] + ")";
+    }
+    const std::string path = "/sensitivity/features/" + feat.name;
+    out.write(path, abs, feat.unit + " per parameter unit (per parameter: /sensitivity/units/" + feat.name + ")");
+    out.set_attribute(path, "feature_value", feat.value);
+    out.set_attribute(path, "feature_unit", feat.unit);
+    out.write("/sensitivity/units/" + feat.name, units);
+    out.write("/sensitivity/relative/" + feat.name, rel, "1");
+    out.write("/sensitivity/ranking/" + feat.name, rep.ranking[f]);
+  }
+  if (!rep.trajectory.empty()) {
+    out.write("/sensitivity/time", rep.time, "ms");
+    out.write("/sensitivity/state_names", rep.state_names);
+    out.write("/sensitivity/state_units", rep.state_units);
+    out.write("/sensitivity/trajectory", rep.trajectory,
+              "state unit per parameter unit (states as integrated: /sensitivity/state_units)",
+              {rep.time.size(), rep.state_names.size(), np});
+  }
+}
+
+}  // namespace phasmid::sensitivity

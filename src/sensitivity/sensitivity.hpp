@@ -1,0 +1,80 @@
+#pragma once
+// Forward sensitivity analysis of a model's trajectory and gait features (issue 4):
+// CVODES forward sensitivities (exact df/dp and J s from the templated right-hand side),
+// feature sensitivities from event times (implicit-function formula), normalised
+// sensitivities and a ranking per feature; or the same by central finite differences.
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "features/features.hpp"
+#include "model/ode_model.hpp"
+#include "solver/simulator.hpp"
+
+namespace phasmid::io {
+class H5Writer;
+}
+
+namespace phasmid::sensitivity {
+
+enum class Method { Forward, FiniteDifference };
+Method parse_method(const std::string& s);  // "forward" | "fd"; throws Error otherwise
+const char* method_name(Method m);
+
+struct SensitivityOptions {
+  std::vector<std::string> parameters;  // names; empty: every parameter of the model
+  double t_end_ms = 2000.0;
+  double output_dt_ms = 1.0;
+  double discard_ms = 0.0;              // transient ignored by the features
+  Method method = Method::Forward;
+  solver::SolverOptions solver;
+  bool write_trajectory = true;         // keep the time x state x parameter sensitivities
+  double fd_relative_step = 1e-4;       // h = fd_relative_step * max(|p|, fd_min_scale)
+  double fd_min_scale = 1e-8;
+  features::FeatureOptions feature_options;  // discard_ms is overwritten by the field above
+};
+
+struct SensitivityReport {
+  Method method = Method::Forward;
+  std::vector<std::string> parameters, parameter_units;
+  std::vector<double> parameter_values;
+  // How each column was obtained: "forward", or "fd" for --method fd and for parameters the
+  // forward method cannot treat exactly (they move a breakpoint or the initial state; see
+  // docs/sensitivity.md).
+  std::vector<std::string> parameter_method;
+  std::vector<features::Feature> features;  // nominal values
+  Eigen::MatrixXd absolute;  // features x parameters: dF/dp (feature unit per parameter unit)
+  Eigen::MatrixXd relative;  // features x parameters: p/F dF/dp (NaN where F == 0)
+  std::vector<std::vector<std::string>> ranking;  // per feature: parameter names by |relative|, largest first
+
+  // Trajectory sensitivities (empty unless write_trajectory): n_time x n_states x n_params, row-major.
+  std::vector<double> time;
+  std::vector<std::string> state_names, state_units;
+  std::vector<double> trajectory;
+  std::vector<double> states;  // nominal trajectory, n_time x n_states
+
+  double wall_seconds = 0.0;
+  solver::SolverStats stats;  // of the nominal (forward: with sensitivities) run
+  long fd_runs = 0;           // simulations done for finite differences
+
+  size_t feature_index(const std::string& name) const;  // throws Error if absent
+  double trajectory_sens(size_t k, size_t i, size_t j) const {
+    return trajectory[(k * state_names.size() + i) * parameters.size() + j];
+  }
+};
+
+// Whether a parameter moves one of the model's breakpoints or its initial state (then
+// forward sensitivities without jump conditions would be wrong for it).
+bool parameter_moves_switches_or_initial_state(const model::OdeModel& model, const std::vector<double>& p, size_t k,
+                                               double t_end);
+
+SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vector<double> p,
+                                        const SensitivityOptions& options);
+
+// /sensitivity/{parameters, parameter_units, parameter_values, parameter_method,
+// features/<f>, units/<f>, relative/<f>, ranking/<f>, feature_values, [time, state_names,
+// state_units, trajectory]} (docs/sensitivity.md).
+void write_sensitivity_h5(io::H5Writer& out, const SensitivityReport& report);
+
+}  // namespace phasmid::sensitivity
