@@ -3,6 +3,7 @@
 
 #include "app/verb.hpp"
 #include "config/config.hpp"
+#include "features/features.hpp"
 #include "io/trajectory_writer.hpp"
 #include "solver/simulator.hpp"
 
@@ -21,13 +22,17 @@ int run_simulate(const SimulateArgs& a) {
   s.solver.progress = !a.quiet;
   std::vector<double> p = model->parameters().values();
   solver::Simulator sim(*model, s.solver);
-  solver::SolveResult r = sim.run(p, solver::output_grid(s.t_end_ms, s.output_dt_ms));
+  solver::SolveResult r = sim.run(p, solver::output_grid(s.t_end_ms, s.output_dt_ms), features::feature_roots(*model));
+  features::FeatureOptions fo;
+  fo.discard_ms = s.discard_ms;
+  std::vector<features::Feature> feats = features::compute_features(*model, r, fo);
 
   std::string out = a.out.empty() ? "simulation.h5" : a.out;
   io::H5Writer w(out);
   w.write_run_info({config::resolved_config_text(cfg, a.sets), command_line()});
   io::write_trajectory(w, *model, r);
   io::write_parameters(w, *model, p);
+  features::write_features_h5(w, feats);
   w.commit();
   if (!a.quiet)
     std::cerr << "phasmid simulate: " << model->num_states() << " states, " << s.t_end_ms << " ms in "
