@@ -5,6 +5,7 @@
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_band.h>
 #include <sunlinsol/sunlinsol_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <unistd.h>
@@ -115,7 +116,11 @@ struct CvodeHandles {
   int ns = 0;
   SUNMatrix A = nullptr;
   SUNLinearSolver LS = nullptr;
+  SUNNonlinearSolver NLS = nullptr;
+  SUNNonlinearSolver NLS_sens = nullptr;
   ~CvodeHandles() {
+    if (NLS_sens) SUNNonlinSolFree(NLS_sens);
+    if (NLS) SUNNonlinSolFree(NLS);
     if (mem) CVodeFree(&mem);
     if (LS) SUNLinSolFree(LS);
     if (A) SUNMatDestroy(A);
@@ -184,7 +189,8 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   h.y = N_VNew_Serial(n, h.ctx);
   std::vector<double> y0 = model_.initial_state(p);
   for (size_t i = 0; i < n; ++i) NV_Ith_S(h.y, i) = y0[i];
-  h.mem = CVodeCreate(CV_BDF, h.ctx);
+  const bool adams = options_.integrator == IntegratorKind::Adams;
+  h.mem = CVodeCreate(adams ? CV_ADAMS : CV_BDF, h.ctx);
   if (!h.mem) throw SolverError("CVodeCreate failed");
   const double t0 = 0.0;
   check_flag(CVodeInit(h.mem, rhs_cb, t0, h.y), "CVodeInit");
@@ -196,15 +202,18 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
 
   int bw = model_.jacobian_half_bandwidth();
   bool band = options_.linear_solver == LinearSolverKind::Band && bw >= 0;
-  if (band) {
+  if (adams) {
+    h.NLS = SUNNonlinSol_FixedPoint(h.y, 0, h.ctx);
+    check_flag(CVodeSetNonlinearSolver(h.mem, h.NLS), "CVodeSetNonlinearSolver");
+  } else if (band) {
     h.A = SUNBandMatrix(n, bw, bw, h.ctx);
     h.LS = SUNLinSol_Band(h.y, h.A, h.ctx);
   } else {
     h.A = SUNDenseMatrix(n, n, h.ctx);
     h.LS = SUNLinSol_Dense(h.y, h.A, h.ctx);
   }
-  check_flag(CVodeSetLinearSolver(h.mem, h.LS, h.A), "CVodeSetLinearSolver");
-  if (options_.jacobian == JacobianKind::AutoDiff)
+  if (!adams) check_flag(CVodeSetLinearSolver(h.mem, h.LS, h.A), "CVodeSetLinearSolver");
+  if (!adams && options_.jacobian == JacobianKind::AutoDiff)
     check_flag(CVodeSetJacFn(h.mem, band ? jac_band_cb : jac_dense_cb), "CVodeSetJacFn");
 
   if (ns > 0) {
@@ -213,6 +222,12 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
     for (int j = 0; j < h.ns; ++j) N_VConst(0.0, h.yS[j]);  // initial state independent of p
     int method = options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS;
     check_flag(CVodeSensInit1(h.mem, h.ns, method, sens_rhs_cb, h.yS), "CVodeSensInit1");
+    if (adams) {
+      h.NLS_sens = method == CV_STAGGERED ? SUNNonlinSol_FixedPointSens(h.ns + 1, h.y, 0, h.ctx)
+                                          : SUNNonlinSol_FixedPointSens(h.ns + 1, h.y, 0, h.ctx);
+      if (method == CV_STAGGERED) check_flag(CVodeSetNonlinearSolverSensStg(h.mem, h.NLS_sens), "CVodeSetNonlinearSolverSensStg");
+      else check_flag(CVodeSetNonlinearSolverSensSim(h.mem, h.NLS_sens), "CVodeSetNonlinearSolverSensSim");
+    }
     std::vector<double> pbar(ns);
     for (size_t j = 0; j < ns; ++j) pbar[j] = std::abs(p[sens_params[j]]) > 0 ? std::abs(p[sens_params[j]]) : 1.0;
     check_flag(CVodeSetSensParams(h.mem, nullptr, pbar.data(), nullptr), "CVodeSetSensParams");
@@ -244,8 +259,15 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   auto last_print = std::chrono::steady_clock::now();
   std::vector<double> ydot(n);
 
+  long steps_before_restarts = 0;  // CVodeReInit resets the step counter
+  auto total_steps = [&] {
+    long v = 0;
+    CVodeGetNumSteps(h.mem, &v);
+    return steps_before_restarts + v;
+  };
   auto record_output = [&](double t) {
     res.t.push_back(t);
+    res.steps_at_output.push_back(total_steps());
     for (size_t i = 0; i < n; ++i) res.y.push_back(NV_Ith_S(h.y, i));
     if (ns) {
       for (size_t i = 0; i < n; ++i)
@@ -293,6 +315,7 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
       // The right-hand side changes here: restart the integrator from the current state.
       // Sensitivities are continuous across such fixed-time switches (the switch time does
       // not depend on the parameters), so they are carried over unchanged.
+      steps_before_restarts = total_steps();
       check_flag(CVodeReInit(h.mem, t, h.y), "CVodeReInit");
       if (ns) check_flag(CVodeSensReInit(h.mem, options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS, h.yS), "CVodeSensReInit");
       ++next_break;
@@ -315,8 +338,7 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   if (show_progress) std::fprintf(stderr, "\r%s: t = %.0f / %.0f ms (100%%)\n", options_.progress_label.c_str(), t_end, t_end);
 
   long v = 0;
-  CVodeGetNumSteps(h.mem, &v);
-  res.stats.steps = v;
+  res.stats.steps = total_steps();
   CVodeGetNumRhsEvals(h.mem, &v);
   res.stats.rhs_evals = v;
   CVodeGetNumJacEvals(h.mem, &v);
