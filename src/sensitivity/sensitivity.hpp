@@ -40,8 +40,7 @@ struct SensitivityReport {
   std::vector<std::string> parameters, parameter_units;
   std::vector<double> parameter_values;
   // How each column was obtained: "forward", or "fd" for --method fd and for parameters the
-  // forward method cannot treat exactly (they move a breakpoint or the initial state; see
-  // docs/sensitivity.md).
+  // forward method cannot treat exactly (they move a breakpoint; see docs/sensitivity.md).
   std::vector<std::string> parameter_method;
   std::vector<features::Feature> features;  // nominal values
   Eigen::MatrixXd absolute;  // features x parameters: dF/dp (feature unit per parameter unit)
@@ -64,10 +63,13 @@ struct SensitivityReport {
   }
 };
 
-// Whether a parameter moves one of the model's breakpoints or its initial state (then
-// forward sensitivities without jump conditions would be wrong for it).
-bool parameter_moves_switches_or_initial_state(const model::OdeModel& model, const std::vector<double>& p, size_t k,
-                                               double t_end);
+// Whether a parameter moves one of the model's breakpoints (switch times): forward
+// sensitivities would then need a jump at the switch, which the solver does not apply, so
+// analyse_sensitivities computes such columns by central finite differences.
+bool parameter_moves_switches(const model::OdeModel& model, const std::vector<double>& p, size_t k, double t_end);
+// Whether a parameter changes the initial state: handled exactly by the forward method with
+// s(0) = dy0/dp (see docs/sensitivity.md).
+bool parameter_moves_initial_state(const model::OdeModel& model, const std::vector<double>& p, size_t k);
 
 SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vector<double> p,
                                         const SensitivityOptions& options);
