@@ -8,6 +8,7 @@
 
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
+#include "sensitivity/segmented.hpp"
 
 namespace phasmid::sensitivity {
 
@@ -47,56 +48,6 @@ bool parameter_moves_initial_state(const model::OdeModel& model, const std::vect
 namespace {
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// The model with its initial state held at y0(pbar): x = y - D (p - pbar), D = dy0/dp for the
-// parameters `cols`, so x(0) does not depend on p and the solver's s_x(0) = 0 is right; then
-// s_y = s_x + D. At p = pbar, x = y. D is linear in p inside the Jet right-hand side, so the
-// sensitivities are exact given D (central differences of the algebraic initial_state()).
-class InitialStateShift : public model::OdeModelT<InitialStateShift> {
- public:
-  InitialStateShift(const model::OdeModel& base, std::vector<double> pbar, std::vector<size_t> cols, Eigen::MatrixXd D)
-      : base_(base), pbar_(std::move(pbar)), cols_(std::move(cols)), D_(std::move(D)) {
-    for (const auto& par : base.parameters().all()) params_.add(par);
-    for (const auto& s : base.states()) add_state(s.name, s.unit);
-    angles_ = base.angles();
-  }
-  std::string kind() const override { return base_.kind(); }
-  std::vector<double> initial_state(const std::vector<double>&) const override { return base_.initial_state(pbar_); }
-  std::vector<double> breakpoints(const std::vector<double>& p, double t_end) const override {
-    return base_.breakpoints(p, t_end);
-  }
-  int jacobian_half_bandwidth() const override { return base_.jacobian_half_bandwidth(); }
-  template <class T>
-  void eval(double t, const T* x, const T* p, T* xdot) const {
-    thread_local std::vector<T> y;
-    const size_t n = num_states();
-    y.assign(x, x + n);
-    for (size_t c = 0; c < cols_.size(); ++c) {
-      T dp = p[cols_[c]] - pbar_[cols_[c]];
-      for (size_t i = 0; i < n; ++i)
-        if (D_(i, c) != 0.0) y[i] += D_(i, c) * dp;
-    }
-    base_.rhs(t, y.data(), p, xdot);
-  }
-
- private:
-  const model::OdeModel& base_;
-  std::vector<double> pbar_;
-  std::vector<size_t> cols_;
-  Eigen::MatrixXd D_;
-};
-
-// dy0/dp_k by central differences of the (algebraic) initial state.
-Eigen::VectorXd initial_state_derivative(const model::OdeModel& model, const std::vector<double>& p, size_t k) {
-  const double h = 1e-6 * std::max(std::abs(p[k]), 1e-3);
-  std::vector<double> pp = p, pm = p;
-  pp[k] += h;
-  pm[k] -= h;
-  std::vector<double> a = model.initial_state(pp), b = model.initial_state(pm);
-  Eigen::VectorXd d(a.size());
-  for (size_t i = 0; i < a.size(); ++i) d[i] = (a[i] - b[i]) / (2 * h);
-  return d;
-}
 
 struct FdColumn {
   std::vector<double> dfeature;  // per nominal feature (NaN if missing in a perturbed run)
@@ -162,37 +113,20 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
   // Columns done by forward sensitivities, the rest by finite differences.
   std::vector<size_t> fwd_cols, fd_cols;
   for (size_t j = 0; j < np; ++j) {
-    bool fd = opt.method == Method::FiniteDifference || parameter_moves_switches(model, p, idx[j], opt.t_end_ms);
+    bool fd = opt.method == Method::FiniteDifference;
     (fd ? fd_cols : fwd_cols).push_back(j);
     rep.parameter_method.push_back(fd ? "fd" : "forward");
   }
   std::vector<size_t> fwd_params;
   for (size_t j : fwd_cols) fwd_params.push_back(idx[j]);
 
-  // Forward parameters that change the initial state: integrate the shifted model and add
-  // dy0/dp to the sensitivities afterwards.
-  std::vector<size_t> init_local, init_params;
-  for (size_t c = 0; c < fwd_params.size(); ++c)
-    if (parameter_moves_initial_state(model, p, fwd_params[c])) {
-      init_local.push_back(c);
-      init_params.push_back(fwd_params[c]);
-    }
-  solver::SolveResult nominal;
-  if (init_params.empty()) {
-    nominal = sim.run(p, grid, roots, fwd_params);
-  } else {
-    Eigen::MatrixXd D(n, init_params.size());
-    for (size_t c = 0; c < init_params.size(); ++c) D.col(c) = initial_state_derivative(model, p, init_params[c]);
-    InitialStateShift shifted(model, p, init_params, D);
-    nominal = solver::Simulator(shifted, opt.solver).run(p, grid, roots, fwd_params);
-    const size_t ns = fwd_params.size();
-    for (size_t k = 0; k < nominal.t.size(); ++k)
-      for (size_t i = 0; i < n; ++i)
-        for (size_t c = 0; c < init_local.size(); ++c) nominal.s[(k * n + i) * ns + init_local[c]] += D(i, c);
-    for (auto& e : nominal.events)
-      for (size_t i = 0; i < n; ++i)
-        for (size_t c = 0; c < init_local.size(); ++c) e.s[i * ns + init_local[c]] += D(i, c);
-  }
+  // Parameters that move a switch time or the initial state need jump conditions / initial
+  // sensitivities: integrate segment by segment (src/sensitivity/segmented.hpp).
+  bool segmented = false;
+  for (size_t k : fwd_params)
+    segmented = segmented || parameter_moves_switches(model, p, k, opt.t_end_ms) || parameter_moves_initial_state(model, p, k);
+  solver::SolveResult nominal = segmented ? run_with_switch_sensitivities(model, p, grid, roots, fwd_params, opt.solver)
+                                          : sim.run(p, grid, roots, fwd_params);
   rep.stats = nominal.stats;
   rep.features = features::compute_features(model, nominal, fopt);
   const size_t nf = rep.features.size();

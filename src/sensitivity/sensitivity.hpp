@@ -39,8 +39,7 @@ struct SensitivityReport {
   Method method = Method::Forward;
   std::vector<std::string> parameters, parameter_units;
   std::vector<double> parameter_values;
-  // How each column was obtained: "forward", or "fd" for --method fd and for parameters the
-  // forward method cannot treat exactly (they move a breakpoint; see docs/sensitivity.md).
+  // How each column was obtained: "forward" or "fd".
   std::vector<std::string> parameter_method;
   std::vector<features::Feature> features;  // nominal values
   Eigen::MatrixXd absolute;  // features x parameters: dF/dp (feature unit per parameter unit)
@@ -64,11 +63,9 @@ struct SensitivityReport {
 };
 
 // Whether a parameter moves one of the model's breakpoints (switch times): forward
-// sensitivities would then need a jump at the switch, which the solver does not apply, so
-// analyse_sensitivities computes such columns by central finite differences.
+// sensitivities then need a jump at the switch (run_with_switch_sensitivities).
 bool parameter_moves_switches(const model::OdeModel& model, const std::vector<double>& p, size_t k, double t_end);
-// Whether a parameter changes the initial state: handled exactly by the forward method with
-// s(0) = dy0/dp (see docs/sensitivity.md).
+// Whether a parameter changes the initial state: forward sensitivities start at s(0) = dy0/dp.
 bool parameter_moves_initial_state(const model::OdeModel& model, const std::vector<double>& p, size_t k);
 
 SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vector<double> p,

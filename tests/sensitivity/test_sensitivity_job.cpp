@@ -41,7 +41,7 @@ max_period_ms = 600
   io::H5Reader in(file);
   EXPECT_EQ(in.read_strings("/sensitivity/parameters"), job.options.parameters);
   EXPECT_EQ(in.read_strings("/sensitivity/parameter_method"),
-            (std::vector<std::string>{"forward", "forward", "forward", "fd"}));
+            (std::vector<std::string>{"forward", "forward", "forward", "forward"}));
   EXPECT_NEAR(in.read_doubles("/features/period_ms")[0], 500.0, 1e-4);
   EXPECT_EQ(in.read_string_attribute("/features/period_ms", "units"), "ms");
   // d period / d switch.period_ms = 1 (the cycle follows the forcing).
