@@ -262,6 +262,25 @@ TEST(FeaturesVerb, PrintsTableAndJsonFromH5) {
   }
   rc = std::system((std::string(PHASMID_BINARY) + " features " + (dir / "junk.h5").string() + " 2> " + err).c_str());
   EXPECT_NE(rc, 0);
+  auto stderr_of = [&](const std::string& file) {
+    int code = std::system((std::string(PHASMID_BINARY) + " features " + file + " 2> " + err).c_str());
+    EXPECT_NE(code, 0) << file;
+    std::stringstream ss;
+    ss << std::ifstream(err).rdbuf();
+    return ss.str();
+  };
+  {
+    io::H5Writer w((dir / "foreign.h5").string());  // HDF5, but not written by phasmid
+    w.write_scalar("/x", 1.0, "1");
+    w.commit();
+  }
+  EXPECT_NE(stderr_of((dir / "foreign.h5").string()).find("not a phasmid file"), std::string::npos);
+  {
+    io::H5Writer w((dir / "nofeatures.h5").string());
+    w.write_run_info({"", "test"});
+    w.commit();
+  }
+  EXPECT_NE(stderr_of((dir / "nofeatures.h5").string()).find("no /features"), std::string::npos);
   fs::remove_all(dir);
 }
 
