@@ -8,6 +8,7 @@
 
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
+#include "sensitivity/segmented.hpp"
 
 namespace phasmid::sensitivity {
 
@@ -25,15 +26,23 @@ size_t SensitivityReport::feature_index(const std::string& name) const {
   throw Error("no feature '" + name + "' in the sensitivity report");
 }
 
-bool parameter_moves_switches_or_initial_state(const model::OdeModel& model, const std::vector<double>& p, size_t k,
-                                               double t_end) {
+namespace {
+std::vector<double> nudged(const std::vector<double>& p, size_t k) {
   std::vector<double> q = p;
   q[k] = p[k] + 1e-6 * std::max(std::abs(p[k]), 1e-3);
-  if (model.initial_state(p) != model.initial_state(q)) return true;
-  std::vector<double> b0 = model.breakpoints(p, t_end), b1 = model.breakpoints(q, t_end);
+  return q;
+}
+}  // namespace
+
+bool parameter_moves_switches(const model::OdeModel& model, const std::vector<double>& p, size_t k, double t_end) {
+  std::vector<double> b0 = model.breakpoints(p, t_end), b1 = model.breakpoints(nudged(p, k), t_end);
   std::sort(b0.begin(), b0.end());
   std::sort(b1.begin(), b1.end());
   return b0 != b1;
+}
+
+bool parameter_moves_initial_state(const model::OdeModel& model, const std::vector<double>& p, size_t k) {
+  return model.initial_state(p) != model.initial_state(nudged(p, k));
 }
 
 namespace {
@@ -104,15 +113,20 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
   // Columns done by forward sensitivities, the rest by finite differences.
   std::vector<size_t> fwd_cols, fd_cols;
   for (size_t j = 0; j < np; ++j) {
-    bool fd = opt.method == Method::FiniteDifference ||
-              parameter_moves_switches_or_initial_state(model, p, idx[j], opt.t_end_ms);
+    bool fd = opt.method == Method::FiniteDifference;
     (fd ? fd_cols : fwd_cols).push_back(j);
     rep.parameter_method.push_back(fd ? "fd" : "forward");
   }
   std::vector<size_t> fwd_params;
   for (size_t j : fwd_cols) fwd_params.push_back(idx[j]);
 
-  solver::SolveResult nominal = sim.run(p, grid, roots, fwd_params);
+  // Parameters that move a switch time or the initial state need jump conditions / initial
+  // sensitivities: integrate segment by segment (src/sensitivity/segmented.hpp).
+  bool segmented = false;
+  for (size_t k : fwd_params)
+    segmented = segmented || parameter_moves_switches(model, p, k, opt.t_end_ms) || parameter_moves_initial_state(model, p, k);
+  solver::SolveResult nominal = segmented ? run_with_switch_sensitivities(model, p, grid, roots, fwd_params, opt.solver)
+                                          : sim.run(p, grid, roots, fwd_params);
   rep.stats = nominal.stats;
   rep.features = features::compute_features(model, nominal, fopt);
   const size_t nf = rep.features.size();
