@@ -8,7 +8,6 @@
 
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
-#include "sensitivity/segmented.hpp"
 
 namespace phasmid::sensitivity {
 
@@ -34,16 +33,6 @@ std::vector<double> nudged(const std::vector<double>& p, size_t k) {
 }
 }  // namespace
 
-bool parameter_moves_switches(const model::OdeModel& model, const std::vector<double>& p, size_t k, double t_end) {
-  std::vector<double> b0 = model.breakpoints(p, t_end), b1 = model.breakpoints(nudged(p, k), t_end);
-  std::sort(b0.begin(), b0.end());
-  std::sort(b1.begin(), b1.end());
-  return b0 != b1;
-}
-
-bool parameter_moves_initial_state(const model::OdeModel& model, const std::vector<double>& p, size_t k) {
-  return model.initial_state(p) != model.initial_state(nudged(p, k));
-}
 
 namespace {
 
@@ -120,13 +109,9 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
   std::vector<size_t> fwd_params;
   for (size_t j : fwd_cols) fwd_params.push_back(idx[j]);
 
-  // Parameters that move a switch time or the initial state need jump conditions / initial
-  // sensitivities: integrate segment by segment (src/sensitivity/segmented.hpp).
-  bool segmented = false;
-  for (size_t k : fwd_params)
-    segmented = segmented || parameter_moves_switches(model, p, k, opt.t_end_ms) || parameter_moves_initial_state(model, p, k);
-  solver::SolveResult nominal = segmented ? run_with_switch_sensitivities(model, p, grid, roots, fwd_params, opt.solver)
-                                          : sim.run(p, grid, roots, fwd_params);
+  // Parameters that move a switch time or the initial state are handled by the solver
+  // (initial sensitivities dy0/dp and jump conditions at parameter-dependent switches).
+  solver::SolveResult nominal = sim.run(p, grid, roots, fwd_params);
   rep.stats = nominal.stats;
   rep.features = features::compute_features(model, nominal, fopt);
   const size_t nf = rep.features.size();

@@ -62,12 +62,6 @@ struct SensitivityReport {
   }
 };
 
-// Whether a parameter moves one of the model's breakpoints (switch times): forward
-// sensitivities then need a jump at the switch (run_with_switch_sensitivities).
-bool parameter_moves_switches(const model::OdeModel& model, const std::vector<double>& p, size_t k, double t_end);
-// Whether a parameter changes the initial state: forward sensitivities start at s(0) = dy0/dp.
-bool parameter_moves_initial_state(const model::OdeModel& model, const std::vector<double>& p, size_t k);
-
 SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vector<double> p,
                                         const SensitivityOptions& options);
 

@@ -219,7 +219,17 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   if (ns > 0) {
     h.ns = static_cast<int>(ns);
     h.yS = N_VCloneVectorArray(h.ns, h.y);
-    for (int j = 0; j < h.ns; ++j) N_VConst(0.0, h.yS[j]);  // initial state independent of p
+    // s(0) = dy0/dp: initial states are algebraic (at most linear) functions of the
+    // parameters (e.g. initial joint angles), so a central difference is exact.
+    for (int j = 0; j < h.ns; ++j) {
+      size_t k = sens_params[j];
+      double hstep = 1e-6 * std::max(1.0, std::abs(p[k]));
+      std::vector<double> pp = p, pm = p;
+      pp[k] += hstep;
+      pm[k] -= hstep;
+      std::vector<double> yp = model_.initial_state(pp), ym = model_.initial_state(pm);
+      for (size_t i = 0; i < n; ++i) NV_Ith_S(h.yS[j], i) = (yp[i] - ym[i]) / (2 * hstep);
+    }
     int method = options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS;
     check_flag(CVodeSensInit1(h.mem, h.ns, method, sens_rhs_cb, h.yS), "CVodeSensInit1");
     if (adams) {
@@ -249,6 +259,35 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
                breaks.end());
   breaks.push_back(t_end);
   size_t next_break = 0;
+  // dtau_k/dp_j of each breakpoint: switch times are algebraic functions of the parameters
+  // (command times, switching periods), so central differences are exact; matched by value.
+  std::vector<std::vector<double>> dtau(breaks.size(), std::vector<double>(ns, 0.0));
+  for (size_t j = 0; j < ns; ++j) {
+    size_t k = sens_params[j];
+    double hstep = 1e-6 * std::max(1.0, std::abs(p[k]));
+    std::vector<double> pp = p, pm = p;
+    pp[k] += hstep;
+    pm[k] -= hstep;
+    std::vector<double> bp = model_.breakpoints(pp, t_end), bm = model_.breakpoints(pm, t_end);
+    std::sort(bp.begin(), bp.end());
+    std::sort(bm.begin(), bm.end());
+    auto nearest = [](const std::vector<double>& v, double x) {
+      double best = NAN;
+      for (double b : v)
+        if (std::isnan(best) || std::abs(b - x) < std::abs(best - x)) best = b;
+      return best;
+    };
+    for (size_t b = 0; b + 1 < breaks.size(); ++b) {
+      // The perturbed switch nearest to the nominal one is the same switch as long as it
+      // moved by less than a quarter of the gap to the neighbouring switches.
+      double gap = breaks[b + 1] - breaks[b];
+      if (b > 0) gap = std::min(gap, breaks[b] - breaks[b - 1]);
+      double up = nearest(bp, breaks[b]), dn = nearest(bm, breaks[b]);
+      if (std::abs(up - breaks[b]) > 0.25 * gap || std::abs(dn - breaks[b]) > 0.25 * gap) continue;
+      dtau[b][j] = (up - dn) / (2 * hstep);
+    }
+  }
+  std::vector<double> f_before(n), f_after(n);
   check_flag(CVodeSetStopTime(h.mem, breaks[0]), "CVodeSetStopTime");
 
   SolveResult res;
@@ -317,6 +356,17 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
       // not depend on the parameters), so they are carried over unchanged.
       steps_before_restarts = total_steps();
       check_flag(CVodeReInit(h.mem, t, h.y), "CVodeReInit");
+      if (ns) {
+        // The state is continuous; if the switch time moves with p_j the sensitivity jumps:
+        // s(tau+) = s(tau-) + (f(tau-) - f(tau+)) dtau/dp_j.
+        const double* yv = N_VGetArrayPointer(h.y);
+        const double delta = 1e-9 * std::max(1.0, std::abs(t));  // one-sided limits at the switch
+        model_.rhs(t - delta, yv, p.data(), f_before.data());
+        model_.rhs(t + delta, yv, p.data(), f_after.data());
+        for (size_t j = 0; j < ns; ++j)
+          if (dtau[next_break][j] != 0.0)
+            for (size_t i = 0; i < n; ++i) NV_Ith_S(h.yS[j], i) += (f_before[i] - f_after[i]) * dtau[next_break][j];
+      }
       if (ns) check_flag(CVodeSensReInit(h.mem, options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS, h.yS), "CVodeSensReInit");
       ++next_break;
       check_flag(CVodeSetStopTime(h.mem, breaks[next_break]), "CVodeSetStopTime");
