@@ -18,6 +18,11 @@ struct Connection {
   int controlled;
   bool during_protraction;  // true: T2 cross connection; false: T1 switch
   double switch_position;   // used when !during_protraction
+  // T1 switch state: armed while the controlling oscillator is short of its switch position;
+  // the crossing lowers the threshold until the controlled oscillator protracts (one trigger
+  // per controlling step) or the controlling one does (the switch is direction-sensitive).
+  bool armed = true;
+  bool latched = false;
 };
 
 class Network {
@@ -41,7 +46,25 @@ class Network {
 
   bool link_active(const Connection& c) const {
     if (c.during_protraction) return protracting_[c.controlling];
-    return !protracting_[c.controlling] && x_[c.controlling] >= c.switch_position - kSlack;
+    return c.latched;
+  }
+
+  // A retracting controller that has reached its switch position throws the switch once per step.
+  bool update_switches() {
+    bool changed = false;
+    for (auto& c : links_) {
+      if (c.during_protraction) continue;
+      const bool beyond = !protracting_[c.controlling] && x_[c.controlling] >= c.switch_position - kSlack;
+      if (beyond && c.armed) {
+        c.armed = false;
+        c.latched = true;
+        changed = true;
+      } else if (protracting_[c.controlling]) {
+        c.armed = true;
+        c.latched = false;
+      }
+    }
+    return changed;
   }
 
   double threshold(int leg) const {
@@ -54,13 +77,15 @@ class Network {
   // Applies every phase change due at time t, including cascades within the same instant.
   void resolve(double t, Trajectory& out) {
     for (int pass = 0; pass < 4 * kLegCount + 4; ++pass) {
-      bool changed = false;
+      bool changed = update_switches();
       std::array<double, kLegCount> th{};
       for (int i = 0; i < kLegCount; ++i) th[i] = threshold(i);
       for (int i = 0; i < kLegCount; ++i) {
         if (!protracting_[i] && x_[i] >= th[i] - kSlack) {
           protracting_[i] = true;
           out.onsets_ms[i].push_back(t);
+          for (auto& c : links_)
+            if (c.controlled == i && !c.during_protraction) c.latched = false;
           changed = true;
         } else if (protracting_[i] && x_[i] <= kSlack) {
           protracting_[i] = false;
@@ -87,7 +112,7 @@ class Network {
       else dt = std::min(dt, std::max(0.0, threshold(i) - x_[i]) / v_ret_);
     }
     for (const auto& c : links_)
-      if (!c.during_protraction && !protracting_[c.controlling] && x_[c.controlling] < c.switch_position - kSlack)
+      if (!c.during_protraction && c.armed && !protracting_[c.controlling] && x_[c.controlling] < c.switch_position - kSlack)
         dt = std::min(dt, (c.switch_position - x_[c.controlling]) / v_ret_);
     return dt;
   }

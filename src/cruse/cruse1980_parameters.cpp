@@ -47,13 +47,20 @@ Parameters::Parameters() {
   add("T0.R3", 10.3, "unit", std::string(kPaper) + " Table 1 T0 min");
   add("T1", 7.0, "unit", std::string(kPaper) + " Table 1 range 5-9 (midpoint)");
   add("T2", 5.5, "unit", std::string(kPaper) + " Table 1 range 1-10 (midpoint)");
-  // Fig. 3 curves are not printed: straight lines in the period, fitted (docs/cruse1980.md).
-  add("switch.SL.at_1000ms", 6.3, "unit", kChoice);
-  add("switch.SL.slope", 0.0051, "unit/ms", kChoice);
-  add("switch.SR.at_1000ms", 6.3, "unit", kChoice);
-  add("switch.SR.slope", 0.0051, "unit/ms", kChoice);
-  add("switch.SL1R1.at_1000ms", 2.59, "unit", kChoice);
-  add("switch.SL1R1.slope", -0.0023, "unit/ms", kChoice);
+  // Fig. 3 curves are not printed: piecewise-linear in the period through these nodes, chosen
+  // so that the steady state has the inter-leg delay of docs/cruse1980.md (gait II).
+  const double sl[] = {5.0, 6.0, 6.43, 6.67, 6.96, 7.11};
+  const double s1[] = {1.67, 2.0, 2.14, 2.22, 2.32, 2.37};
+  for (std::size_t i = 0; i < switch_node_periods().size(); ++i) {
+    const std::string at = ".at_" + std::to_string(static_cast<int>(switch_node_periods()[i])) + "ms";
+    add("switch.SL" + at, sl[i], "unit", kChoice);
+    add("switch.SR" + at, sl[i], "unit", kChoice);
+    add("switch.SL1R1" + at, s1[i], "unit", kChoice);
+  }
+  // Gait I: fixed switch points (Cruse 1980 Sect. 3 a); values give a tripod (docs).
+  add("gait1.switch.SL", 5.0 / 3.0, "unit", kChoice);
+  add("gait1.switch.SR", 5.0 / 3.0, "unit", kChoice);
+  add("gait1.switch.SL1R1", 5.0 / 3.0, "unit", kChoice);
   add("coupling.contralateral", 1, "1",
       std::string(kPaper) + " Sect. 2: cross connections can be switched off centrally");
   add("analysis.cycles", 5, "1", kChoice);
@@ -96,9 +103,26 @@ double Parameters::nominal_period_ms() const {
   return amplitude / get("retraction_rate") + amplitude / protraction_rate();
 }
 
+const std::vector<double>& switch_node_periods() {
+  static const std::vector<double> periods = {400, 600, 800, 1000, 1500, 2000};
+  return periods;
+}
+
 double Parameters::switch_position(const std::string& which) const {
-  const double s = get("switch." + which + ".at_1000ms") + get("switch." + which + ".slope") * (nominal_period_ms() - 1000.0);
-  return std::clamp(s, 0.0, t0(L1));
+  if (gait == Gait::I) return get("gait1.switch." + which);
+  // Linear between nodes, constant beyond the first and last node.
+  const auto& nodes = switch_node_periods();
+  auto value = [&](std::size_t i) {
+    return get("switch." + which + ".at_" + std::to_string(static_cast<int>(nodes[i])) + "ms");
+  };
+  const double period = nominal_period_ms();
+  if (period <= nodes.front()) return value(0);
+  for (std::size_t i = 1; i < nodes.size(); ++i)
+    if (period <= nodes[i]) {
+      const double w = (period - nodes[i - 1]) / (nodes[i] - nodes[i - 1]);
+      return (1 - w) * value(i - 1) + w * value(i);
+    }
+  return value(nodes.size() - 1);
 }
 
 std::array<double, kLegCount> table2_start(int position) {

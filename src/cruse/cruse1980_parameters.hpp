@@ -41,7 +41,8 @@ class Parameters {
   // Nominal period from the retraction rate: time to retract 0 -> T0(OL1) plus protraction back.
   double nominal_period_ms() const;
   double protraction_rate() const;  // position units per ms, by gait
-  // Switch position (Fig. 3) of switch "SL", "SR" or "SL1R1" at the nominal period.
+  // Switch position (Fig. 3) of switch "SL", "SR" or "SL1R1" at the nominal period (gait II),
+  // or the fixed gait-I switch point.
   double switch_position(const std::string& which) const;
 
  private:
@@ -49,6 +50,9 @@ class Parameters {
   std::map<std::string, std::size_t> index_;
   void add(std::string name, double value, std::string unit, std::string source);
 };
+
+// Periods (ms) at which the Fig. 3 switch curves are given as parameters "switch.<S>.at_<P>ms".
+const std::vector<double>& switch_node_periods();
 
 // Table 2 of Cruse (1980): initial oscillator outputs, row `position` (1..10), legs L1..R3.
 std::array<double, kLegCount> table2_start(int position);
