@@ -9,6 +9,8 @@
 namespace phasmid::cruse {
 namespace {
 
+constexpr double kSweepCycles = 60;
+
 bool has_pair(const Features& f, const std::string& pair) {
   for (const auto& p : f.in_phase_pairs)
     if (p == pair) return true;
@@ -35,6 +37,8 @@ bool is_stable(const Parameters& base, const std::vector<double>& periods_ms) {
   for (double period : periods_ms) {
     Parameters p = base;
     p.set("retraction_rate", retraction_rate_for_period(base, period));
+    // Give every speed the same number of cycles to settle (docs/cruse1980.md).
+    p.set("duration_ms", kSweepCycles * period);
     Features first;
     for (int start = 1; start <= 10; ++start) {
       p.set("start_position", start);
