@@ -29,8 +29,7 @@ void write_run(const std::string& path, const LoadedConfig& config, const Trajec
                const std::string& command) {
   io::H5Writer w(path);
   // The parameters actually used: --set overrides are part of the run, not of the file text.
-  LoadedConfig used = config;
-  w.write_run_info({resolved_config(used), command});
+  w.write_run_info({resolved_config(config), command});
   w.set_attribute("/", "model", "cruse1980");
   w.write("/trajectory/time", run.time_ms, "ms");
   for (int leg = 0; leg < kLegCount; ++leg) {
