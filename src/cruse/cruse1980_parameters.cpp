@@ -81,6 +81,8 @@ void Parameters::set(const std::string& name, double value) {
   if (!std::isfinite(value)) throw Error(fmt::format("cruse1980: parameter '{}' is not finite", name));
   if (name == "start_position" && (value < 1 || value > 10 || value != std::floor(value)))
     throw Error(fmt::format("cruse1980: start_position must be an integer 1..10 (Table 2), got {}", value));
+  if (name == "analysis.cycles" && (value < 1 || value != std::floor(value)))
+    throw Error(fmt::format("cruse1980: analysis.cycles must be a positive integer, got {}", value));
   if ((name == "raster_ms" || name == "duration_ms" || name == "output_step_ms" || name == "retraction_rate" ||
        name == "protraction_rate" || name == "gait1.protraction_to_retraction_rate") &&
       value <= 0)
