@@ -16,12 +16,14 @@ double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : s / static_cast<double>(v.size());
 }
 
-// Mean time from each onset of `hind` in [from, to) to the next onset of `front` after it.
-double graham_lag(const std::vector<double>& hind, const std::vector<double>& front, double from, double to) {
+// Mean time from each onset of `hind` in [from, to) to the next onset of `front` after it; a
+// front onset within `simultaneous` of the hind onset is simultaneous, not following.
+double graham_lag(const std::vector<double>& hind, const std::vector<double>& front, double from, double to,
+                  double simultaneous) {
   std::vector<double> lags;
   for (double th : hind) {
-    if (th < from - kSameInstantMs || th >= to - kSameInstantMs) continue;
-    auto it = std::upper_bound(front.begin(), front.end(), th + kSameInstantMs);
+    if (th < from - simultaneous || th >= to - simultaneous) continue;
+    auto it = std::upper_bound(front.begin(), front.end(), th + simultaneous);
     if (it != front.end()) lags.push_back(*it - th);
   }
   return mean(lags);
@@ -41,26 +43,29 @@ Features measure(const Trajectory& run, const Parameters& p) {
 
   f.locked = true;
   const auto& names = leg_names();
+  const double tol = p.get("analysis.in_phase_tolerance_ms");
+  // Window edges sit half a tolerance before OL1 onsets, so that legs protracting together
+  // with OL1 (give or take the tolerance) are counted in the same cycle as OL1.
+  const double edge = 0.5 * tol + kSameInstantMs;
   std::array<std::vector<double>, kLegCount> window;
   for (int leg = 0; leg < kLegCount; ++leg) {
     for (double t : run.onsets_ms[leg])
-      if (t >= from - kSameInstantMs && t < to - kSameInstantMs) window[leg].push_back(t);
+      if (t >= from - edge && t < to - edge) window[leg].push_back(t);
     if (static_cast<int>(window[leg].size()) != cycles) {
       f.locked = false;
       continue;
     }
     std::vector<double> phases;
     for (double t : window[leg]) {
-      auto it = std::upper_bound(lead.begin(), lead.end(), t + kSameInstantMs);
+      auto it = std::upper_bound(lead.begin(), lead.end(), t + edge);
       const double prev = *(it - 1);
       phases.push_back((t - prev) / f.period_ms);
     }
     f.phase[leg] = mean(phases);
   }
-  f.lag_L3_L1_ms = graham_lag(run.onsets_ms[L3], lead, from, to);
-  f.lag_R3_R1_ms = graham_lag(run.onsets_ms[R3], run.onsets_ms[R1], from, to);
+  f.lag_L3_L1_ms = graham_lag(run.onsets_ms[L3], lead, from, to, edge);
+  f.lag_R3_R1_ms = graham_lag(run.onsets_ms[R3], run.onsets_ms[R1], from, to, edge);
 
-  const double tol = p.get("analysis.in_phase_tolerance_ms");
   for (int a = 0; a < kLegCount; ++a)
     for (int b = a + 1; b < kLegCount; ++b) {
       if (window[a].size() != static_cast<std::size_t>(cycles) || window[b].size() != window[a].size()) continue;

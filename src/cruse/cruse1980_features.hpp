@@ -16,7 +16,8 @@ struct Features {
   // protraction onset of the ipsilateral front leg.
   double lag_L3_L1_ms = 0;
   double lag_R3_R1_ms = 0;
-  // Onset of each leg after the preceding OL1 onset, as a fraction of the period, in [0, 1).
+  // Onset of each leg after the preceding OL1 onset, as a fraction of the period; onsets up to
+  // half the in-phase tolerance before an OL1 onset count as (slightly negative) phase 0.
   std::array<double, kLegCount> phase{};
   std::vector<std::string> in_phase_pairs;  // e.g. "L1-R2": onsets coincide within tolerance
 };

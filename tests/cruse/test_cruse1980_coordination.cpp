@@ -70,19 +70,28 @@ TEST(Cruse1980, GaitIILagMatchesHandComputation) {
 }
 
 // Sect. 3: in gait I the lags "lie on a straight line with the slope 1" against the period.
-TEST(Cruse1980, GaitILagGrowsWithPeriodWithSlopeOne) {
+// The tripod makes L3 and L1 protract together, so Graham's "immediately following" L1 onset
+// comes one period later: within one 20 ms raster step of the period (raster), exactly the
+// period (event-exact).
+class GaitI : public ::testing::TestWithParam<Stepping> {};
+
+TEST_P(GaitI, LagGrowsWithPeriodWithSlopeOneFromAllStartPositions) {
   Parameters base;
   base.gait = Gait::I;
+  base.stepping = GetParam();
   for (const char* s : {"SL", "SR", "SL1R1"}) base.set(std::string("gait1.switch.") + s, 5.0 / 3.0);
+  const double allowed = GetParam() == Stepping::Raster ? 20.0 + 1e-9 : 1e-6;
   std::vector<double> periods{300, 500, 700, 1000, 1500, 2000}, lags;
   for (double period : periods) {
     Parameters p = at_period(base, period);
-    const Features f = measure(simulate(p), p);
-    ASSERT_TRUE(f.locked) << period;
-    EXPECT_TRUE(has_pair(f, "L1-L3") || f.lag_L3_L1_ms >= period - 20.0) << period;
-    // Within one 20 ms raster step of the period: L3 and L1 protract together (tripod).
-    EXPECT_LE(std::abs(f.lag_L3_L1_ms - period), 20.0 + 1e-9) << period;
-    lags.push_back(f.lag_L3_L1_ms);
+    for (int start = 1; start <= 10; ++start) {
+      p.set("start_position", start);
+      const Features f = measure(simulate(p), p);
+      ASSERT_TRUE(f.locked) << period << " ms, start " << start;
+      EXPECT_TRUE(has_pair(f, "L1-L3") && has_pair(f, "L1-R2") && has_pair(f, "L2-R3")) << period;
+      EXPECT_LE(std::abs(f.lag_L3_L1_ms - period), allowed) << period << " ms, start " << start;
+      if (start == 1) lags.push_back(f.lag_L3_L1_ms);
+    }
   }
   // Least-squares slope of lag against period.
   double mp = 0, ml = 0;
@@ -92,8 +101,10 @@ TEST(Cruse1980, GaitILagGrowsWithPeriodWithSlopeOne) {
     sxy += (periods[i] - mp) * (lags[i] - ml);
     sxx += (periods[i] - mp) * (periods[i] - mp);
   }
-  EXPECT_NEAR(sxy / sxx, 1.0, 0.01);
+  EXPECT_NEAR(sxy / sxx, 1.0, GetParam() == Stepping::Raster ? 0.01 : 1e-9);
 }
+
+INSTANTIATE_TEST_SUITE_P(Tripod, GaitI, ::testing::Values(Stepping::Raster, Stepping::Continuous));
 
 // Table 1: the listed values give a stable pattern; T0 of every other oscillator must stay
 // above T0(OL1) = 10 ("the value T0 of the oscillator OL1 must be the lowest one of all").
