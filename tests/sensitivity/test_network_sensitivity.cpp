@@ -1,0 +1,41 @@
+// Forward feature sensitivities of the single-joint neural network (spike-driven muscle
+// activation, smooth spike criterion) against central finite differences: the derivatives
+// cross hundreds of motoneuron spikes and the CPG transitions.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "config/config.hpp"
+#include "sensitivity/sensitivity.hpp"
+
+using namespace phasmid;
+
+TEST(NetworkSensitivity, FeatureSensitivitiesMatchCentralDifferences) {
+  auto cfg = config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/sensitivity_single_joint.toml");
+  auto m = config::build_model(cfg);
+  sensitivity::SensitivityOptions o;
+  o.parameters = {"middle.fti.cpg_flx.g_app", "middle.fti.k_F.flexion"};
+  o.t_end_ms = 2600;
+  o.discard_ms = 1000;
+  o.output_dt_ms = 5;
+  o.write_trajectory = false;
+  o.solver.rtol = o.solver.atol = 1e-9;
+  auto fwd = sensitivity::analyse_sensitivities(*m, m->parameters().values(), o);
+  o.method = sensitivity::Method::FiniteDifference;
+  o.fd_relative_step = 1e-4;
+  auto fd = sensitivity::analyse_sensitivities(*m, m->parameters().values(), o);
+  ASSERT_EQ(fwd.features.size(), fd.features.size());
+  int compared = 0;
+  for (size_t f = 0; f < fwd.features.size(); ++f) {
+    for (size_t j = 0; j < o.parameters.size(); ++j) {
+      double a = fwd.absolute(f, j), b = fd.absolute(f, j);
+      // Well-conditioned entries: relative sensitivity above 1e-3 (others are dominated by
+      // finite-difference noise of the event times).
+      double rel = std::abs(b) * fd.parameter_values[j] / std::max(1e-12, std::abs(fwd.features[f].value));
+      if (rel < 1e-3) continue;
+      EXPECT_NEAR(a, b, 0.01 * std::abs(b)) << fwd.features[f].name << " / " << o.parameters[j];
+      ++compared;
+    }
+  }
+  EXPECT_GE(compared, 6);
+}
