@@ -125,7 +125,8 @@
     return [lo, hi];
   }
   // Matrix (heat map) chart over category axes. cells: [{x, y, v, color, note}]
-  function heatmap(id, f, title, xs, ys, cells, xTitle, yTitle, valueLabel) {
+  // ysUpwards: ys are numbers in ascending order, drawn bottom to top; otherwise ys[0] is the top row.
+  function heatmap(id, f, title, xs, ys, cells, xTitle, yTitle, valueLabel, ysUpwards) {
     var nx = xs.length, ny = ys.length;
     draw(id, f, {
       type: 'matrix',
@@ -146,7 +147,7 @@
         },
         scales: {
           x: axis(xTitle, { type: 'category', labels: xs, offset: true, grid: { display: false }, ticks: { autoSkip: true, maxRotation: 60 } }),
-          y: axis(yTitle, { type: 'category', labels: ys.slice().reverse(), offset: true, grid: { display: false } })
+          y: axis(yTitle, { type: 'category', labels: ysUpwards ? ys : ys.slice().reverse(), offset: true, grid: { display: false } })
         }
       }
     });
@@ -166,7 +167,7 @@
 
   // ------------------------------------------------------------------ trajectory
   function seriesXY(tr, s) { return xy(s.t || tr.time, s.y); }
-  function timeAxis(tr) { return axis(withUnits('time', tr.time_units || 'ms'), { type: 'linear', min: tr.t_range[0], max: tr.t_range[1] }); }
+  function timeAxis(tr) { return axis(withUnits('time', tr.time_units || 'ms'), { type: 'linear', min: tr.t_range[0], max: tr.t_range[1], ticks: { includeBounds: false } }); }
 
   function phaseChart(sec, id, tr, rows, title, caption, barLabel) {
     var legs = rows.map(function (r) { return r.leg; });
@@ -187,6 +188,12 @@
   function trajectory(tr) {
     var sec = section('trajectory', 'Trajectory',
       'Simulated time course' + (tr.decimated ? ' (long series reduced to at most ' + DATA.max_points + ' points each by min/max decimation, so peaks are kept).' : '.'));
+    if (tr.footfall && tr.footfall.length)
+      phaseChart(sec, 'fig-footfall', tr, tr.footfall, 'Footfall diagram (black bars: swing phase)',
+        'Footfall diagram: black bars mark swing (footfall = 1), gaps mark stance, for each leg over time.', 'swing');
+    var angleGrid = el('div', { cls: 'grid2' }), voltGrid = el('div', { cls: 'grid2' });
+    sec.appendChild(angleGrid);
+    sec.appendChild(voltGrid);
     // Joint angles, one figure per leg.
     var byLeg = {};
     var legOrder = [];
@@ -195,7 +202,7 @@
       var list = byLeg[leg];
       var id = 'fig-angles-' + safeId(leg);
       var units = list[0].units || 'deg';
-      var f = figure(sec, id, 'Joint angles of the ' + leg + ' leg: ' + list.map(function (s) { return s.joint; }).join(', ') + ' in ' + units + '.', 300);
+      var f = figure(angleGrid, id, 'Joint angles of the ' + leg + ' leg: ' + list.map(function (s) { return s.joint; }).join(', ') + ' in ' + units + '.', 300);
       draw(id, f, {
         type: 'line',
         data: { datasets: list.map(function (s, i) { return lineDataset(s.joint + ' (' + (s.units || units) + ')', seriesXY(tr, s), i); }) },
@@ -210,11 +217,17 @@
       if (!groups[g]) { groups[g] = []; gorder.push(g); }
       groups[g].push(s);
     });
+    var LEGS = ['front', 'middle', 'hind', 'L1', 'L2', 'L3', 'R1', 'R2', 'R3'], JOINTS = ['thc', 'ctr', 'fti'];
+    function rank(list, v) { var i = list.indexOf(v); return i < 0 ? list.length : i; }
+    gorder.sort(function (a, b) {
+      var pa = a.split('.'), pb = b.split('.');
+      return (rank(LEGS, pa[0]) - rank(LEGS, pb[0])) || (rank(JOINTS, pa[1]) - rank(JOINTS, pb[1])) || (a < b ? -1 : a > b ? 1 : 0);
+    });
     gorder.forEach(function (g) {
       var list = groups[g];
       var id = 'fig-voltage-' + safeId(g);
       var units = list[0].units || 'mV';
-      var f = figure(sec, id, 'Membrane potentials of the CPG (C) and motor-neuron (MN) units of ' + g + ', in ' + units + '.', 300);
+      var f = figure(voltGrid, id, 'Membrane potentials of the CPG (C) and motor-neuron (MN) units of ' + g + ', in ' + units + '.', 300);
       draw(id, f, {
         type: 'line',
         data: { datasets: list.map(function (s, i) {
@@ -224,9 +237,6 @@
         options: { plugins: { title: titleOpt('CPG and motor-neuron potentials, ' + g) }, scales: { x: timeAxis(tr), y: axis(withUnits('membrane potential', units)) } }
       });
     });
-    if (tr.footfall && tr.footfall.length)
-      phaseChart(sec, 'fig-footfall', tr, tr.footfall, 'Footfall diagram (black bars: swing phase)',
-        'Footfall diagram: black bars mark swing (footfall = 1), gaps mark stance, for each leg over time.', 'swing');
     if (tr.position && tr.position.length) {
       var id = 'fig-position';
       var units = tr.position[0].units;
@@ -337,6 +347,7 @@
       var re = s.floquet.real, im = s.floquet.imag;
       var lim = 1.15;
       re.forEach(function (v, i) { lim = Math.max(lim, 1.1 * Math.abs(v || 0), 1.1 * Math.abs(im[i] || 0)); });
+      lim = Math.ceil(lim * 2) / 2;
       var circle = [];
       for (var k = 0; k <= 180; k++) circle.push({ x: Math.cos(2 * Math.PI * k / 180), y: Math.sin(2 * Math.PI * k / 180) });
       var idf = 'fig-floquet';
@@ -459,11 +470,26 @@
     });
     if (porder.length > 6) { panels = { '': pts.map(function (p, i) { return i; }) }; porder = ['']; }
     var xName = pname(0), yName = names.length > 1 ? pname(1) : '';
-    function drawPanels(baseId, what, valueOf, colorOf, valueLabel, after) {
+    function drawPanels(baseId, what, valueOf, colorOf, valueLabel, after, numeric) {
+      // Panels of one quantity side by side, on one colour scale.
+      var parent = sec;
+      if (porder.length > 1) { parent = el('div', { cls: 'grid2' }); sec.appendChild(parent); }
       porder.forEach(function (key, k) {
         var idx = panels[key];
         var id = baseId + (k ? '--' + k : '');
         var title = what + (key ? ' at ' + key : '');
+        if (numeric && names.length === 1) {
+          // One swept parameter: the feature against it.
+          var order = idx.slice().sort(function (a, b) { return pts[a][0] - pts[b][0]; });
+          var fl = figure(parent, id, title + ' against ' + xName + ' (' + idx.length + ' points; failed points left out).', 320);
+          draw(id, fl, {
+            type: 'scatter',
+            data: { datasets: [{ label: valueLabel, data: order.filter(function (i) { return status[i] === 'ok'; }).map(function (i) { return { x: pts[i][0], y: valueOf(i) }; }),
+              showLine: true, borderColor: PALETTE[0], backgroundColor: PALETTE[0], pointRadius: 4 }] },
+            options: { plugins: { title: titleOpt(title), legend: { display: false } }, scales: { x: axis(xName), y: axis(valueLabel) } }
+          });
+          return;
+        }
         var xsv = uniqueSorted(idx.map(function (i) { return pts[i][0]; }));
         var ysv = names.length > 1 ? uniqueSorted(idx.map(function (i) { return pts[i][1]; })) : [null];
         var seen = {}, dup = false;
@@ -475,11 +501,11 @@
           var cells = idx.map(function (i) {
             return { x: fmt(pts[i][0]), y: names.length > 1 ? fmt(pts[i][1]) : '—', v: valueOf(i), color: colorOf(i), note: status[i] !== 'ok' ? 'failed: ' + status[i] : null };
           });
-          var f = figure(sec, id, caption, Math.min(560, 140 + 30 * yl.length));
-          heatmap(id, f, title, xl, yl, cells, xName, yName || '(single swept parameter)', valueLabel);
+          var f = figure(parent, id, caption, Math.min(560, 140 + 30 * yl.length));
+          heatmap(id, f, title, xl, yl, cells, xName, yName || '(single swept parameter)', valueLabel, true);
           after(f.fig);
         } else {
-          var fs = figure(sec, id, caption, 380);
+          var fs = figure(parent, id, caption, 380);
           draw(id, fs, {
             type: 'scatter',
             data: { datasets: [{ label: valueLabel, data: idx.map(function (i) { return { x: pts[i][0], y: names.length > 1 ? pts[i][1] : 0, v: valueOf(i), note: status[i] !== 'ok' ? 'failed: ' + status[i] : null }; }),
@@ -498,7 +524,7 @@
       drawPanels('fig-sweep-' + safeId(ft.name), ft.name, function (i) { return ft.values[i]; }, function (i) {
         var v = ft.values[i];
         return v === null || status[i] !== 'ok' ? '#d0d0d0' : ramp(VIRIDIS, (v - rng[0]) / (rng[1] - rng[0]));
-      }, label, function (fig) { colorbar(fig, VIRIDIS, rng[0], rng[1], label + '; grey: failed or undefined'); });
+      }, label, function (fig) { colorbar(fig, VIRIDIS, rng[0], rng[1], label + '; grey: failed or undefined'); }, true);
     });
     if (gait || s.status) {
       if (!gait) gait = status.map(function (st) { return st === 'ok' ? 'unclassified' : 'failed'; });

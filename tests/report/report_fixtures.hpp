@@ -154,12 +154,19 @@ inline void write_fit_fixture(const std::string& path) {
   w.commit();
 }
 
-// A 4 x 4 grid over coupling strength and sign, for two start conditions (two panels),
-// with one failed point. `grid = false` writes scattered (Latin-hypercube-like) points instead.
-inline void write_sweep_fixture(const std::string& path, bool grid = true) {
+enum class SweepShape {
+  Grid,          // 4 x 4 grid over coupling strength and sign, for two start conditions (two panels)
+  Scattered,     // 15 scattered (Latin-hypercube-like) points over strength and sign
+  OneParameter,  // 8 strengths only
+};
+
+// Sweep results with one failed point (index 5).
+inline void write_sweep_fixture(const std::string& path, SweepShape shape = SweepShape::Grid) {
+  const bool grid = shape == SweepShape::Grid;
   io::H5Writer w(path);
-  w.write_run_info(fixture_info(grid ? "sweep" : "sweep-scatter"));
-  std::vector<std::string> names = {"coupling.strength", "coupling.sign"};
+  w.write_run_info(fixture_info("sweep"));
+  std::vector<std::string> names = {"coupling.strength"};
+  if (shape != SweepShape::OneParameter) names.push_back("coupling.sign");
   if (grid) names.push_back("start.tripod");
   w.write("/sweep/parameter_names", names);
   w.write("/sweep/parameter_units", std::vector<std::string>(names.size(), "1"));
@@ -169,7 +176,7 @@ inline void write_sweep_fixture(const std::string& path, bool grid = true) {
   int k = 0;
   auto add = [&](double s, double g, double start) {
     pts.push_back(s);
-    pts.push_back(g);
+    if (shape != SweepShape::OneParameter) pts.push_back(g);
     if (grid) pts.push_back(start);
     bool failed = k == 5;
     status.push_back(failed ? "CVODE: too much work at t = 312 ms" : "ok");
@@ -182,6 +189,8 @@ inline void write_sweep_fixture(const std::string& path, bool grid = true) {
     for (double start : {0.0, 1.0})
       for (double g : {-1.0, -0.5, 0.5, 1.0})
         for (double s : {0.1, 0.3, 0.6, 1.0}) add(s, g, start);
+  } else if (shape == SweepShape::OneParameter) {
+    for (int i = 0; i < 8; ++i) add(0.05 + 0.125 * i, -1.0, 0);
   } else {
     for (int i = 0; i < 15; ++i) add(std::fmod(0.37 * i + 0.11, 1.0), std::fmod(0.61 * i + 0.05, 2.0) - 1.0, 0);
   }
@@ -191,6 +200,13 @@ inline void write_sweep_fixture(const std::string& path, bool grid = true) {
   w.write("/sweep/features/stance_swing_ratio", ratio, "1");
   w.write("/sweep/gait_class", gait);
   w.write("/sweep/status", status);
+  w.commit();
+}
+
+// A valid phasmid file with none of the groups a report draws.
+inline void write_empty_fixture(const std::string& path) {
+  io::H5Writer w(path);
+  w.write_run_info(fixture_info("empty"));
   w.commit();
 }
 

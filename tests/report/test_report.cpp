@@ -14,6 +14,8 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "common/error.hpp"
 #include "report/report.hpp"
@@ -151,6 +153,20 @@ void expect_renders(const std::string& kind, const fs::path& h5, const std::vect
   }
   maybe_screenshot(html, kind);
 }
+
+// Removes the scratch directory at the end unless PHASMID_KEEP_TEST_FILES is set.
+class CleanUp : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    if (std::getenv("PHASMID_KEEP_TEST_FILES")) {
+      std::printf("report test files kept in %s\n", work_dir().c_str());
+      return;
+    }
+    std::error_code ec;
+    fs::remove_all(work_dir(), ec);
+  }
+};
+const auto* const clean_up = ::testing::AddGlobalTestEnvironment(new CleanUp);
 
 }  // namespace
 
@@ -312,8 +328,25 @@ TEST(ReportRender, Sweep) {
 
 TEST(ReportRender, SweepScatteredPoints) {
   fs::path h5 = work_dir() / "sweep_scatter.h5";
-  phasmid::testing::write_sweep_fixture(h5.string(), false);
+  phasmid::testing::write_sweep_fixture(h5.string(), phasmid::testing::SweepShape::Scattered);
   expect_renders("sweep_scatter", h5, {"fig-sweep-period_ms", "fig-sweep-gait", "table-sweep-failures"});
+}
+
+TEST(ReportRender, SweepOneParameter) {
+  fs::path h5 = work_dir() / "sweep_1d.h5";
+  phasmid::testing::write_sweep_fixture(h5.string(), phasmid::testing::SweepShape::OneParameter);
+  expect_renders("sweep_1d", h5,
+                 {"fig-sweep-period_ms", "fig-sweep-stance_swing_ratio", "fig-sweep-gait", "table-sweep-failures"});
+}
+
+TEST(ReportRender, FileWithNothingToDraw) {
+  fs::path h5 = work_dir() / "empty.h5";
+  phasmid::testing::write_empty_fixture(h5.string());
+  ASSERT_FALSE(chromium().empty()) << "chromium is required";
+  Page p = load(make_report(h5));
+  EXPECT_EQ(p.attr("data-status"), "ok") << p.attr("data-errors");
+  EXPECT_EQ(p.attr("data-figures"), "");
+  EXPECT_NE(p.dom.find("none of the groups a report can show"), std::string::npos);
 }
 
 TEST(ReportRender, DetectsScriptErrors) {
