@@ -486,20 +486,26 @@ nlohmann::json extract(const std::string& h5_path, std::size_t max_points) {
       note_ignored(out, p);
       continue;
     }
-    if (top == "trajectory")
-      extract_trajectory(r, out, max_points);
-    else if (top == "parameters")
-      extract_parameters(r, out);
-    else if (top == "features")
-      extract_features(r, out);
-    else if (top == "sensitivity")
-      extract_sensitivity(r, out);
-    else if (top == "fit")
-      extract_fit(r, out, max_points);
-    else if (top == "sweep")
-      extract_sweep(r, out);
-    else
-      note_ignored(out, p);
+    // A group this report cannot read (unexpected types or shapes) is listed, not fatal.
+    try {
+      if (top == "trajectory")
+        extract_trajectory(r, out, max_points);
+      else if (top == "parameters")
+        extract_parameters(r, out);
+      else if (top == "features")
+        extract_features(r, out);
+      else if (top == "sensitivity")
+        extract_sensitivity(r, out);
+      else if (top == "fit")
+        extract_fit(r, out, max_points);
+      else if (top == "sweep")
+        extract_sweep(r, out);
+      else
+        note_ignored(out, p);
+    } catch (const Error& e) {
+      out.erase(top);
+      note_ignored(out, p + " (unreadable: " + e.what() + ")");
+    }
   }
   return out;
 }
