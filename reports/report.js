@@ -268,7 +268,7 @@
     var sec = section('features', 'Features', 'Scalar features of the run (period, phase durations, extremal angles, ...).');
     if (!rows.length) { sec.appendChild(el('p', { cls: 'empty', text: 'No features.' })); return; }
     table(sec, 'table-features', 'Features (' + rows.length + ')', ['feature', 'value', 'unit'],
-      rows.map(function (r) { return [r.name, r.value, r.units || '']; }), [false, true, false]);
+      rows.map(function (r) { return [r.name, Array.isArray(r.value) ? r.value.map(fmt).join(', ') : r.value, r.units || '']; }), [false, true, false]);
   }
 
   // ------------------------------------------------------------------ sensitivity
@@ -455,9 +455,13 @@
   }
   function sweep(s) {
     var names = s.parameter_names || [], units = s.parameter_units || [], pts = s.points || [];
-    var sec = section('sweep', 'Sweep', 'Features and gait class at each of the ' + pts.length + ' sweep points, over the first two swept parameters' +
-      (names.length > 2 ? ' (one panel per combination of the others)' : '') + '.');
-    if (!pts.length || !names.length) { sec.appendChild(el('p', { cls: 'empty', text: 'No sweep points in this file.' })); return; }
+    var sec = section('sweep', 'Sweep', pts.length && names.length ? 'Features and gait class at each of the ' + pts.length + ' sweep points, over the first two swept parameters' +
+      (names.length > 2 ? ' (one panel per combination of the others)' : '') + '.' : 'Results over the swept parameter values.');
+    sweepAxes(sec, s);
+    if (!pts.length || !names.length) {
+      if (!(s.axes || []).length && !(s.extra || []).length) sec.appendChild(el('p', { cls: 'empty', text: 'No sweep points in this file.' }));
+      return;
+    }
     var pname = function (j) { return withUnits(names[j], units[j]); };
     var status = s.status || pts.map(function () { return 'ok'; });
     var gait = s.gait_class ? s.gait_class.slice() : null;
@@ -545,6 +549,37 @@
     }
   }
 
+  // Sweeps along single axes: /sweep/<parameter>/values with same-length results (e.g. stable 0/1).
+  function sweepAxes(sec, s) {
+    var axes = s.axes || [];
+    if (axes.length) {
+      var grid = el('div', { cls: 'grid2' });
+      sec.appendChild(grid);
+      axes.forEach(function (ax) {
+        if (!ax.series.length) return;
+        var id = 'fig-sweep-axis-' + safeId(ax.name);
+        var yl = ax.series.length === 1 ? withUnits(ax.series[0].name, ax.series[0].units) : 'value';
+        var f = figure(grid, id, ax.series.map(function (r) { return withUnits(r.name, r.units); }).join(', ') + ' at each swept value of ' + ax.name + '.', 300);
+        draw(id, f, {
+          type: 'scatter',
+          data: { datasets: ax.series.map(function (r, i) {
+            return { label: withUnits(r.name, r.units), data: ax.x.map(function (x, k) { return { x: x, y: r.values[k] }; }).sort(function (a, b) { return a.x - b.x; }),
+              showLine: true, stepped: ax.series.length === 1 && r.values.every(function (v) { return v === 0 || v === 1 || v === null; }) ? 'middle' : false,
+              borderColor: PALETTE[i % PALETTE.length], backgroundColor: PALETTE[i % PALETTE.length], pointRadius: 2.5 };
+          }) },
+          options: { plugins: { title: titleOpt(ax.series.map(function (r) { return r.name; }).join(', ') + ' over ' + ax.name), legend: { display: ax.series.length > 1 } },
+            scales: { x: axis(withUnits(ax.name, ax.units)), y: axis(yl) } }
+        });
+      });
+      var rows = [];
+      axes.forEach(function (ax) { ax.scalars.forEach(function (c) { rows.push([ax.name, c.name, c.value, c.units || '']); }); });
+      if (rows.length) table(sec, 'table-sweep-axes', 'Results per swept parameter', ['parameter', 'result', 'value', 'unit'], rows, [false, false, true, false]);
+    }
+    if ((s.extra || []).length)
+      table(sec, 'table-sweep-extra', 'Other sweep data', ['dataset', 'values', 'unit'],
+        s.extra.map(function (e) { return [e.name, e.values.map(fmt).join(', '), e.units || '']; }), [false, false, false]);
+  }
+
   // ------------------------------------------------------------------ main
   try {
     header();
@@ -557,6 +592,7 @@
     if (DATA.ignored && DATA.ignored.length) {
       var sec = section('other', 'Other contents', 'Groups and datasets this report does not draw.');
       sec.appendChild(el('ul', { id: 'list-ignored' }, DATA.ignored.map(function (p) { return el('li', { text: p }); })));
+      rendered.push('list-ignored');
     }
     if (!main.children.length) main.appendChild(el('p', { cls: 'empty', text: 'This file holds none of the groups a report can show (trajectory, features, parameters, sensitivity, fit, sweep).' }));
   } catch (e) {

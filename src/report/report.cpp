@@ -272,11 +272,15 @@ void extract_features(const H5Reader& r, json& out) {
   json rows = json::array();
   for (const auto& name : names) {
     std::string p = "/features/" + name;
-    if (!is_numeric_dataset(r, p) || count(r.dims(p)) != 1) {
+    if (is_numeric_dataset(r, p) && count(r.dims(p)) == 1) {
+      rows.push_back({{"name", name}, {"value", num(r.read_doubles(p)[0])}, {"units", units_of(r, p)}});
+    } else if (is_numeric_dataset(r, p) && count(r.dims(p)) <= 64) {  // e.g. phases of six legs
+      rows.push_back({{"name", name}, {"value", nums(r.read_doubles(p))}, {"units", units_of(r, p)}});
+    } else if (is_dataset(r, p) && is_string_dataset(r, p)) {
+      rows.push_back({{"name", name}, {"value", r.read_strings(p)}, {"units", ""}});
+    } else {
       note_ignored(out, p);
-      continue;
     }
-    rows.push_back({{"name", name}, {"value", num(r.read_doubles(p)[0])}, {"units", units_of(r, p)}});
   }
   out["features"] = rows;
 }
@@ -391,10 +395,36 @@ void extract_sweep(const H5Reader& r, json& out) {
   auto status = strings_or_empty(r, "/sweep/status");
   if (gait.size() == n_points) s["gait_class"] = gait;
   if (status.size() == n_points) s["status"] = status;
+  // Other layouts: a group with a `values` dataset is a 1-D axis (e.g. the Cruse-model stability
+  // sweep: /sweep/<parameter>/{values, stable, stable_min, ...}); its same-length datasets are
+  // drawn against it, its scalars tabulated. Other numeric vectors are tabulated.
+  s["axes"] = json::array();
+  s["extra"] = json::array();
   for (const auto& c : r.children("/sweep")) {
     static const std::set<std::string> known = {"parameter_names", "parameter_units", "points", "features",
                                                 "gait_class", "status"};
-    if (!known.count(c)) note_ignored(out, "/sweep/" + c);
+    if (known.count(c)) continue;
+    const std::string g = "/sweep/" + c;
+    if (r.is_group(g) && is_numeric_dataset(r, g + "/values")) {
+      const auto x = r.read_doubles(g + "/values");
+      json ax = {{"name", c}, {"units", units_of(r, g + "/values")}, {"x", nums(x)},
+                 {"series", json::array()}, {"scalars", json::array()}};
+      for (const auto& d : r.children(g)) {
+        const std::string p = g + "/" + d;
+        if (d == "values") continue;
+        if (is_numeric_dataset(r, p) && count(r.dims(p)) == x.size() && x.size() > 1)
+          ax["series"].push_back({{"name", d}, {"units", units_of(r, p)}, {"values", nums(r.read_doubles(p))}});
+        else if (is_numeric_dataset(r, p) && count(r.dims(p)) == 1)
+          ax["scalars"].push_back({{"name", d}, {"units", units_of(r, p)}, {"value", num(r.read_doubles(p)[0])}});
+        else
+          note_ignored(out, p);
+      }
+      s["axes"].push_back(ax);
+    } else if (is_numeric_dataset(r, g) && count(r.dims(g)) <= 1000) {
+      s["extra"].push_back({{"name", c}, {"units", units_of(r, g)}, {"values", nums(r.read_doubles(g))}});
+    } else {
+      note_ignored(out, g);
+    }
   }
   out["sweep"] = s;
 }

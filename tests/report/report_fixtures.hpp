@@ -89,8 +89,32 @@ inline void write_cruse_fixture(const std::string& path) {
     }
     w.write("/trajectory/position/" + legs[l], pos, "1");
     w.write("/trajectory/protraction/" + legs[l], pro, "1");
+    w.write("/events/protraction_onset/" + legs[l], std::vector<double>{100.0 + l, 520.0 + l}, "ms");
   }
   w.write_scalar("/features/period_ms", 420.0, "ms");
+  w.write("/features/phase", std::vector<double>{0, 0.33, 0.67, 0.5, 0.83, 0.17}, "1");
+  w.write("/features/in_phase_pairs", std::vector<std::string>{"L1-R2", "L3-R2"});
+  w.commit();
+}
+
+// Cruse (1980) Table 1 style stability sweep: /sweep/<parameter>/{values, stable, stable_min, ...}.
+inline void write_cruse_sweep_fixture(const std::string& path) {
+  io::H5Writer w(path);
+  w.write_run_info(fixture_info("cruse-sweep"));
+  w.write("/sweep/periods_ms", std::vector<double>{400, 500, 700, 1000}, "ms");
+  for (const char* p : {"OL2", "T1", "T2"}) {
+    std::vector<double> v, stable;
+    for (int i = 0; i <= 20; ++i) {
+      v.push_back(0.5 * i);
+      stable.push_back(i >= 4 && i <= 14 ? 1 : 0);
+    }
+    const std::string g = std::string("/sweep/") + p;
+    w.write(g + "/values", v, "unit");
+    w.write(g + "/stable", stable, "1");
+    w.write_scalar(g + "/stable_min", 2.0, "unit");
+    w.write_scalar(g + "/stable_max", 7.0, "unit");
+    w.write_scalar(g + "/contiguous", 1.0, "1");
+  }
   w.commit();
 }
 

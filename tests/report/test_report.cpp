@@ -264,6 +264,7 @@ TEST(ReportCli, DefaultOutputNextToInputAndErrors) {
   Result r = run(q(PHASMID_BINARY) + " report " + q(h5.string()) + " 2>&1");
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_TRUE(fs::exists(dir / "run.html"));
+  EXPECT_EQ(r.out, (dir / "run.html").string() + "\n");  // prints where the report is
   std::string html = slurp(dir / "run.html");
   EXPECT_NE(html.find("Chart.js v4"), std::string::npos);  // library inlined, not linked
   EXPECT_EQ(html.find("<script src"), std::string::npos);
@@ -298,7 +299,15 @@ TEST(ReportRender, Trajectory) {
 TEST(ReportRender, Cruse) {
   fs::path h5 = work_dir() / "cruse.h5";
   phasmid::testing::write_cruse_fixture(h5.string());
-  expect_renders("cruse", h5, {"fig-position", "fig-protraction", "table-features"});
+  expect_renders("cruse", h5, {"fig-position", "fig-protraction", "table-features", "list-ignored"});
+}
+
+TEST(ReportRender, CruseStabilitySweep) {
+  fs::path h5 = work_dir() / "cruse_sweep.h5";
+  phasmid::testing::write_cruse_sweep_fixture(h5.string());
+  expect_renders("cruse_sweep", h5,
+                 {"fig-sweep-axis-OL2", "fig-sweep-axis-T1", "fig-sweep-axis-T2", "table-sweep-axes",
+                  "table-sweep-extra"});
 }
 
 TEST(ReportRender, Sensitivity) {
