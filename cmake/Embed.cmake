@@ -4,13 +4,11 @@ file(GLOB_RECURSE PHASMID_EMBED_FILES CONFIGURE_DEPENDS
   ${CMAKE_SOURCE_DIR}/configs/*.toml
   ${CMAKE_SOURCE_DIR}/reports/*.html ${CMAKE_SOURCE_DIR}/reports/*.js ${CMAKE_SOURCE_DIR}/reports/*.css)
 set(_embed_cpp ${CMAKE_BINARY_DIR}/generated/phasmid_embedded.cpp)
-# A ";" inside a custom command reaches the shell as a command separator: pass the list "|"-joined.
-string(REPLACE ";" "|" _embed_list "${PHASMID_EMBED_FILES}")
 add_custom_command(
   OUTPUT ${_embed_cpp}
-  COMMAND ${CMAKE_COMMAND} -DOUT=${_embed_cpp} -DROOT=${CMAKE_SOURCE_DIR} "-DFILES=${_embed_list}"
+  COMMAND ${CMAKE_COMMAND} -DOUT=${_embed_cpp} -DROOT=${CMAKE_SOURCE_DIR} "-DFILES=${PHASMID_EMBED_FILES}"
           -P ${CMAKE_SOURCE_DIR}/cmake/EmbedFiles.cmake
   DEPENDS ${PHASMID_EMBED_FILES} ${CMAKE_SOURCE_DIR}/cmake/EmbedFiles.cmake
   COMMENT "Embedding configs and report assets"
-  VERBATIM)
+  VERBATIM)  # without it the ';'-separated FILES list is split by the shell once there are 2+ files
 target_sources(phasmid_lib PRIVATE ${_embed_cpp})
