@@ -4,11 +4,13 @@ file(GLOB_RECURSE PHASMID_EMBED_FILES CONFIGURE_DEPENDS
   ${CMAKE_SOURCE_DIR}/configs/*.toml
   ${CMAKE_SOURCE_DIR}/reports/*.html ${CMAKE_SOURCE_DIR}/reports/*.js ${CMAKE_SOURCE_DIR}/reports/*.css)
 set(_embed_cpp ${CMAKE_BINARY_DIR}/generated/phasmid_embedded.cpp)
+set(_embed_list ${CMAKE_BINARY_DIR}/generated/embedded_files.txt)
+string(REPLACE ";" "\n" _embed_lines "${PHASMID_EMBED_FILES}")
+file(WRITE ${_embed_list} "${_embed_lines}")
 add_custom_command(
   OUTPUT ${_embed_cpp}
-  COMMAND ${CMAKE_COMMAND} -DOUT=${_embed_cpp} -DROOT=${CMAKE_SOURCE_DIR} "-DFILES=${PHASMID_EMBED_FILES}"
+  COMMAND ${CMAKE_COMMAND} -DOUT=${_embed_cpp} -DROOT=${CMAKE_SOURCE_DIR} -DLIST=${_embed_list}
           -P ${CMAKE_SOURCE_DIR}/cmake/EmbedFiles.cmake
-  DEPENDS ${PHASMID_EMBED_FILES} ${CMAKE_SOURCE_DIR}/cmake/EmbedFiles.cmake
-  COMMENT "Embedding configs and report assets"
-  VERBATIM)  # without it the ';'-separated FILES list is split by the shell once there are 2+ files
+  DEPENDS ${PHASMID_EMBED_FILES} ${_embed_list} ${CMAKE_SOURCE_DIR}/cmake/EmbedFiles.cmake
+  COMMENT "Embedding configs and report assets")
 target_sources(phasmid_lib PRIVATE ${_embed_cpp})

@@ -1,5 +1,6 @@
 # Script mode: writes OUT, a C++ file defining phasmid::embedded::files() from FILES.
 # Content is split into raw-string chunks to stay under compiler literal limits.
+file(STRINGS ${LIST} FILES)
 set(_body "#include <map>\n#include <string>\nnamespace phasmid::embedded {\nconst std::map<std::string, std::string>& files() {\n  static const std::map<std::string, std::string> table = {\n")
 foreach(f ${FILES})
   file(RELATIVE_PATH rel ${ROOT} ${f})
