@@ -195,18 +195,20 @@
     sec.appendChild(angleGrid);
     sec.appendChild(voltGrid);
     // Joint angles, one figure per leg.
-    var byLeg = {};
-    var legOrder = [];
-    tr.angles.forEach(function (s) { if (!byLeg[s.leg]) { byLeg[s.leg] = []; legOrder.push(s.leg); } byLeg[s.leg].push(s); });
-    legOrder.forEach(function (leg) {
-      var list = byLeg[leg];
-      var id = 'fig-angles-' + safeId(leg);
-      var units = list[0].units || 'deg';
-      var f = figure(angleGrid, id, 'Joint angles of the ' + leg + ' leg: ' + list.map(function (s) { return s.joint; }).join(', ') + ' in ' + units + '.', 300);
-      draw(id, f, {
-        type: 'line',
-        data: { datasets: list.map(function (s, i) { return lineDataset(s.joint + ' (' + (s.units || units) + ')', seriesXY(tr, s), i); }) },
-        options: { plugins: { title: titleOpt('Joint angles, ' + leg + ' leg') }, scales: { x: timeAxis(tr), y: axis(withUnits('joint angle', units)) } }
+    [['angles', 'fig-angles-', 'Joint angles', 'joint angle', 'deg'], ['angular_velocity', 'fig-angvel-', 'Joint angular velocities', 'angular velocity', 'deg/s']].forEach(function (kind) {
+      var byLeg = {};
+      var legOrder = [];
+      (tr[kind[0]] || []).forEach(function (s) { if (!byLeg[s.leg]) { byLeg[s.leg] = []; legOrder.push(s.leg); } byLeg[s.leg].push(s); });
+      legOrder.forEach(function (leg) {
+        var list = byLeg[leg];
+        var id = kind[1] + safeId(leg);
+        var units = list[0].units || kind[4];
+        var f = figure(angleGrid, id, kind[2] + ' of the ' + leg + ' leg: ' + list.map(function (s) { return s.joint; }).join(', ') + ' in ' + units + '.', 300);
+        draw(id, f, {
+          type: 'line',
+          data: { datasets: list.map(function (s, i) { return lineDataset(s.joint + ' (' + (s.units || units) + ')', seriesXY(tr, s), i); }) },
+          options: { plugins: { title: titleOpt(kind[2] + ', ' + leg + ' leg') }, scales: { x: timeAxis(tr), y: axis(withUnits(kind[3], units)) } }
+        });
       });
     });
     // Membrane potentials of CPG (C) and motor-neuron (MN) units, grouped by leg.joint.
@@ -305,7 +307,8 @@
           plugins: { title: titleOpt('Ranked sensitivity of ' + name), legend: { display: false },
             tooltip: { callbacks: { afterLabel: function (c) {
               var i = order[c.dataIndex];
-              return raw[name] ? 'raw ∂' + name + '/∂p = ' + fmt(raw[name].values[i]) + ' ' + (raw[name].units || '') : '';
+              var pu = (s.parameter_units || [])[i];
+              return raw[name] ? 'raw ∂' + name + '/∂p = ' + fmt(raw[name].values[i]) + ' ' + (raw[name].units || '') + (pu ? ' (parameter unit: ' + pu + ')' : '') : '';
             } } } },
           scales: {
             x: axis(useRel ? 'relative sensitivity ∂ln ' + name + ' / ∂ln p (1)' : withUnits('sensitivity ∂' + name + ' / ∂p', units)),
@@ -367,6 +370,17 @@
       });
       table(sec, 'table-floquet', 'Floquet multipliers', ['#', 'Re μ', 'Im μ', '|μ|'],
         re.map(function (v, i) { return [i + 1, v, im[i], v === null || im[i] === null ? null : Math.hypot(v, im[i])]; }), [true, true, true, true]);
+    }
+    if (s.prc) {
+      var idp = 'fig-prc';
+      var pts = s.prc.phase.map(function (v, i) { return { x: v, y: s.prc.shift[i] }; }).sort(function (a, b) { return a.x - b.x; });
+      var fp = figure(sec, idp, 'Phase response curve: phase shift of the limit cycle after a brief kick' + (s.prc.state ? ' to ' + s.prc.state : '') + ' at each phase (positive = advance).', 320);
+      draw(idp, fp, {
+        type: 'scatter',
+        data: { datasets: [{ label: 'phase shift', data: pts, showLine: true, borderColor: PALETTE[4], backgroundColor: PALETTE[4], pointRadius: 2 }] },
+        options: { plugins: { title: titleOpt('Phase response curve' + (s.prc.state ? ' (kick to ' + s.prc.state + ')' : '')), legend: { display: false } },
+          scales: { x: axis(withUnits('phase of the kick', s.prc.phase_units || 'cycles')), y: axis(withUnits('phase shift', s.prc.shift_units || 'cycles')) } }
+      });
     }
   }
 

@@ -154,12 +154,14 @@ void extract_trajectory(const H5Reader& r, json& out, std::size_t max_points) {
     return is_numeric_dataset(r, path) && !r.dims(path).empty() && r.dims(path)[0] == n;
   };
 
-  tr["angles"] = json::array();
-  if (r.is_group("/trajectory/angles")) {
-    auto legs = r.children("/trajectory/angles");
+  for (const char* kind : {"angles", "angular_velocity"}) {
+  const std::string group = std::string("/trajectory/") + kind;
+  tr[kind] = json::array();
+  if (r.is_group(group)) {
+    auto legs = r.children(group);
     sort_by(legs, kLegOrder);
     for (const auto& leg : legs) {
-      std::string lp = "/trajectory/angles/" + leg;
+      std::string lp = group + "/" + leg;
       if (!r.is_group(lp)) {
         note_ignored(out, lp);
         continue;
@@ -176,9 +178,10 @@ void extract_trajectory(const H5Reader& r, json& out, std::size_t max_points) {
         s["leg"] = leg;
         s["joint"] = joint;
         s["units"] = units_of(r, p);
-        tr["angles"].push_back(s);
+        tr[kind].push_back(s);
       }
     }
+  }
   }
 
   // States: CPG and motor-neuron membrane potentials are drawn, the rest only listed.
@@ -245,7 +248,8 @@ void extract_trajectory(const H5Reader& r, json& out, std::size_t max_points) {
     }
   }
   for (const auto& c : r.children("/trajectory")) {
-    static const std::set<std::string> known = {"time", "angles", "states", "footfall", "protraction", "position"};
+    static const std::set<std::string> known = {"time",     "angles",      "angular_velocity", "states",
+                                                "footfall", "protraction", "position"};
     if (!known.count(c)) note_ignored(out, "/trajectory/" + c);
   }
   out["trajectory"] = tr;
@@ -307,6 +311,7 @@ void extract_sensitivity(const H5Reader& r, json& out) {
   json s = json::object();
   auto params = strings_or_empty(r, "/sensitivity/parameters");
   s["parameters"] = params;
+  s["parameter_units"] = strings_or_empty(r, "/sensitivity/parameter_units");
   s["features"] = named_vectors(r, out, "/sensitivity/features", params.size());
   s["relative"] = named_vectors(r, out, "/sensitivity/relative", params.size());
   const std::string re = "/sensitivity/floquet/multipliers_real", im = "/sensitivity/floquet/multipliers_imag";
@@ -314,8 +319,26 @@ void extract_sensitivity(const H5Reader& r, json& out) {
     auto a = r.read_doubles(re), b = r.read_doubles(im);
     if (a.size() == b.size()) s["floquet"] = {{"real", nums(a)}, {"imag", nums(b)}};
   }
+  // Phase response curve: /sensitivity/prc/{phase, shift}, attribute `state` = the kicked state.
+  const std::string ph = "/sensitivity/prc/phase", sh = "/sensitivity/prc/shift";
+  if (is_numeric_dataset(r, ph) && is_numeric_dataset(r, sh)) {
+    auto a = r.read_doubles(ph), b = r.read_doubles(sh);
+    std::string state;
+    try {
+      state = r.read_string_attribute("/sensitivity/prc", "state");
+    } catch (const Error&) {
+    }
+    if (a.size() == b.size())
+      s["prc"] = {{"phase", nums(a)}, {"shift", nums(b)}, {"phase_units", units_of(r, ph)},
+                  {"shift_units", units_of(r, sh)}, {"state", state}};
+  }
   for (const auto& c : r.children("/sensitivity")) {
-    static const std::set<std::string> known = {"parameters", "features", "relative", "floquet"};
+    // Bookkeeping that the figures already cover (names, units, values, our own ranking).
+    static const std::set<std::string> known = {"parameters",     "parameter_units", "parameter_method",
+                                                "parameter_values", "feature_names",  "feature_units",
+                                                "feature_values", "units",           "ranking",
+                                                "features",       "relative",        "floquet",
+                                                "prc"};
     if (!known.count(c)) note_ignored(out, "/sensitivity/" + c);
   }
   out["sensitivity"] = s;

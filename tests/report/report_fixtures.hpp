@@ -43,6 +43,11 @@ inline void write_trajectory_fixture(const std::string& path) {
       std::vector<double> a(n);
       for (int i = 0; i < n; ++i) a[i] = 90 + (25 - 5 * j) * std::sin(2 * pi * (t[i] / period - lag) + 0.4 * j);
       w.write("/trajectory/angles/" + legs[l] + "/" + joints[j], a, "deg");
+      if (legs[l] == "middle") {
+        std::vector<double> v(n);
+        for (int i = 0; i < n; ++i) v[i] = 1000 * (25 - 5 * j) * 2 * pi / period * std::cos(2 * pi * (t[i] / period - lag) + 0.4 * j);
+        w.write("/trajectory/angular_velocity/middle/" + joints[j], v, "deg/s");
+      }
     }
     std::vector<double> foot(n);
     for (int i = 0; i < n; ++i) foot[i] = std::sin(2 * pi * (t[i] / period - lag)) > 0.3 ? 1.0 : 0.0;
@@ -139,6 +144,15 @@ inline void write_sensitivity_fixture(const std::string& path) {
   }
   w.write("/sensitivity/floquet/multipliers_real", std::vector<double>{1.0, 0.42, 0.11, 0.11}, "1");
   w.write("/sensitivity/floquet/multipliers_imag", std::vector<double>{0.0, 0.0, 0.35, -0.35}, "1");
+  w.write("/sensitivity/parameter_units", std::vector<std::string>(params.size(), "1"));
+  std::vector<double> phase, shift;
+  for (int i = 0; i < 40; ++i) {
+    phase.push_back(i / 40.0);
+    shift.push_back(0.05 * std::sin(2 * 3.141592653589793 * i / 40.0) + 0.01);
+  }
+  w.write("/sensitivity/prc/phase", phase, "cycles");
+  w.write("/sensitivity/prc/shift", shift, "cycles (positive = advance)");
+  w.set_attribute("/sensitivity/prc", "state", "middle.fti.C1.V");
   write_parameters_and_features(w);
   w.commit();
 }

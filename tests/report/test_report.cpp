@@ -291,7 +291,7 @@ TEST(ReportRender, Trajectory) {
   fs::path h5 = work_dir() / "trajectory.h5";
   phasmid::testing::write_trajectory_fixture(h5.string());
   expect_renders("trajectory", h5,
-                 {"fig-angles-front", "fig-angles-middle", "fig-angles-hind", "fig-voltage-middle.thc",
+                 {"fig-angles-front", "fig-angles-middle", "fig-angles-hind", "fig-angvel-middle", "fig-voltage-middle.thc",
                   "fig-voltage-middle.ctr", "fig-voltage-middle.fti", "fig-footfall", "table-features",
                   "table-parameters"});
 }
@@ -315,7 +315,7 @@ TEST(ReportRender, Sensitivity) {
   phasmid::testing::write_sensitivity_fixture(h5.string());
   expect_renders("sensitivity", h5,
                  {"fig-sens-period_ms", "fig-sens-stance_duration_ms", "fig-sens-swing_duration_ms",
-                  "fig-sens-middle.fti.max_deg", "fig-sens-heatmap", "fig-floquet", "table-floquet"});
+                  "fig-sens-middle.fti.max_deg", "fig-sens-heatmap", "fig-floquet", "table-floquet", "fig-prc"});
 }
 
 TEST(ReportRender, Fit) {
