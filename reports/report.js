@@ -70,6 +70,7 @@
   function titleOpt(text) { return { display: true, text: text }; }
   function table(parent, id, caption, headers, rows, numeric) {
     var t = el('table', { cls: 'tbl', id: id }, [el('caption', { text: caption })]);
+    if (rows.length > 25) { var wrap = el('div', { cls: 'scroll' }); parent.appendChild(wrap); parent = wrap; }
     t.appendChild(el('thead', null, [el('tr', null, headers.map(function (h) { return el('th', { text: h }); }))]));
     var tb = el('tbody');
     rows.forEach(function (r) {
@@ -211,32 +212,36 @@
         });
       });
     });
-    // Membrane potentials of CPG (C) and motor-neuron (MN) units, grouped by leg.joint.
-    var groups = {}, gorder = [];
-    tr.voltages.forEach(function (s) {
-      var parts = s.name.split('.');
-      var g = parts.length > 2 ? parts.slice(0, 2).join('.') : (parts.length > 1 ? parts[0] : 'network');
-      if (!groups[g]) { groups[g] = []; gorder.push(g); }
-      groups[g].push(s);
-    });
+    // Membrane potentials grouped by leg.joint: CPG (C) and motor-neuron (MN) units, then other neurons.
     var LEGS = ['front', 'middle', 'hind', 'L1', 'L2', 'L3', 'R1', 'R2', 'R3'], JOINTS = ['thc', 'ctr', 'fti'];
     function rank(list, v) { var i = list.indexOf(v); return i < 0 ? list.length : i; }
-    gorder.sort(function (a, b) {
-      var pa = a.split('.'), pb = b.split('.');
-      return (rank(LEGS, pa[0]) - rank(LEGS, pb[0])) || (rank(JOINTS, pa[1]) - rank(JOINTS, pb[1])) || (a < b ? -1 : a > b ? 1 : 0);
-    });
-    gorder.forEach(function (g) {
-      var list = groups[g];
-      var id = 'fig-voltage-' + safeId(g);
-      var units = list[0].units || 'mV';
-      var f = figure(voltGrid, id, 'Membrane potentials of the CPG (C) and motor-neuron (MN) units of ' + g + ', in ' + units + '.', 300);
-      draw(id, f, {
-        type: 'line',
-        data: { datasets: list.map(function (s, i) {
-          var short = s.name.indexOf(g + '.') === 0 ? s.name.slice(g.length + 1) : s.name;
-          return lineDataset(short, seriesXY(tr, s), i);
-        }) },
-        options: { plugins: { title: titleOpt('CPG and motor-neuron potentials, ' + g) }, scales: { x: timeAxis(tr), y: axis(withUnits('membrane potential', units)) } }
+    [['cpg_mn', 'fig-voltage-', 'CPG and motor-neuron potentials', 'Membrane potentials of the CPG (C) and motor-neuron (MN) units of '],
+     ['other', 'fig-voltage-other-', 'Other neuron potentials', 'Membrane potentials of the other neurons (interneurons, sensory units, ...) of ']].forEach(function (kind) {
+      var groups = {}, gorder = [];
+      tr.voltages.forEach(function (s) {
+        if ((s.kind || 'cpg_mn') !== kind[0]) return;
+        var parts = s.name.split('.');
+        var g = parts.length > 3 ? parts.slice(0, 2).join('.') : (parts.length > 2 ? parts[0] : 'network');
+        if (!groups[g]) { groups[g] = []; gorder.push(g); }
+        groups[g].push(s);
+      });
+      gorder.sort(function (a, b) {
+        var pa = a.split('.'), pb = b.split('.');
+        return (rank(LEGS, pa[0]) - rank(LEGS, pb[0])) || (rank(JOINTS, pa[1]) - rank(JOINTS, pb[1])) || (a < b ? -1 : a > b ? 1 : 0);
+      });
+      gorder.forEach(function (g) {
+        var list = groups[g];
+        var id = kind[1] + safeId(g);
+        var units = list[0].units || 'mV';
+        var f = figure(voltGrid, id, kind[3] + g + ', in ' + units + '.', 300);
+        draw(id, f, {
+          type: 'line',
+          data: { datasets: list.map(function (s, i) {
+            var short = s.name.indexOf(g + '.') === 0 ? s.name.slice(g.length + 1) : s.name;
+            return lineDataset(short, seriesXY(tr, s), i);
+          }) },
+          options: { plugins: { title: titleOpt(kind[2] + ', ' + g) }, scales: { x: timeAxis(tr), y: axis(withUnits('membrane potential', units)) } }
+        });
       });
     });
     if (tr.position && tr.position.length) {

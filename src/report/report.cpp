@@ -1,6 +1,7 @@
 #include "report/report.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -137,6 +138,20 @@ json intervals_json(const std::vector<double>& t, const std::vector<double>& fla
 void note_ignored(json& out, const std::string& path) { out["ignored"].push_back(path); }
 
 // ---------------------------------------------------------------- trajectory
+// "<leg>.<joint>.<unit>.V": is <unit> a CPG unit (C, C1, cpg_ext, ...) or a motor neuron (MN1, mn_flx)?
+bool is_cpg_or_mn(const std::string& name) {
+  const std::string stem = name.substr(0, name.size() - 2);
+  const auto dot = stem.rfind('.');
+  const std::string unit = dot == std::string::npos ? stem : stem.substr(dot + 1);
+  auto lower = unit;
+  for (auto& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (lower.rfind("cpg", 0) == 0 || lower.rfind("mn", 0) == 0) return true;
+  if (!unit.empty() && unit[0] == 'C') {  // C, C1, C2, C_ext
+    return unit.size() == 1 || std::isdigit(static_cast<unsigned char>(unit[1])) || unit[1] == '_';
+  }
+  return false;
+}
+
 void extract_trajectory(const H5Reader& r, json& out, std::size_t max_points) {
   json tr = json::object();
   if (!is_numeric_dataset(r, "/trajectory/time")) {
@@ -184,7 +199,8 @@ void extract_trajectory(const H5Reader& r, json& out, std::size_t max_points) {
   }
   }
 
-  // States: CPG and motor-neuron membrane potentials are drawn, the rest only listed.
+  // States: membrane potentials (<...>.<unit>.V) are drawn, CPG and motor-neuron units (C1, cpg_ext,
+  // MN2, mn_flx, ...) apart from the other neurons (interneurons, sensory units); the rest is listed.
   tr["voltages"] = json::array();
   tr["other_states"] = json::array();
   if (r.is_group("/trajectory/states")) {
@@ -192,11 +208,11 @@ void extract_trajectory(const H5Reader& r, json& out, std::size_t max_points) {
     walk(r, "/trajectory/states", "", names);
     for (const auto& name : names) {
       std::string p = "/trajectory/states/" + name;
-      bool is_voltage = (name.find(".C") != std::string::npos || name.find(".MN") != std::string::npos) &&
-                        name.size() >= 2 && name.compare(name.size() - 2, 2, ".V") == 0;
+      const bool is_voltage = name.size() > 2 && name.compare(name.size() - 2, 2, ".V") == 0;
       if (is_voltage && series_ok(p) && count(r.dims(p)) == n) {
         json s = series(t, r.read_doubles(p), max_points);
         s["name"] = name;
+        s["kind"] = is_cpg_or_mn(name) ? "cpg_mn" : "other";
         s["units"] = units_of(r, p);
         tr["voltages"].push_back(s);
       } else {

@@ -66,6 +66,11 @@ inline void write_trajectory_fixture(const std::string& path) {
       w.write("/trajectory/states/middle." + joint + "." + unit + ".w", wv, "1");
     }
   }
+  {  // an interneuron: drawn as an "other" potential
+    std::vector<double> v(n);
+    for (int i = 0; i < n; ++i) v[i] = -55 + 10 * std::sin(2 * pi * t[i] / period);
+    w.write("/trajectory/states/middle.fti.in_ext.V", v, "mV");
+  }
   write_parameters_and_features(w);
   w.write("/unknown_extension/stuff", std::vector<double>{1, 2, 3}, "1");  // must be ignored gracefully
   w.commit();

@@ -217,7 +217,11 @@ TEST(ReportUnits, ExtractTrajectoryFindsGroupsAndDecimates) {
   EXPECT_TRUE(tr["decimated"].get<bool>());
   EXPECT_LE(tr["angles"][0]["y"].size(), 5000u);
   EXPECT_EQ(tr["angles"][0]["t"].size(), tr["angles"][0]["y"].size());
-  EXPECT_EQ(tr["voltages"].size(), 12u);   // C1, C2, MN1, MN2 .V of three joints
+  EXPECT_EQ(tr["voltages"].size(), 13u);  // C1, C2, MN1, MN2 .V of three joints, one interneuron
+  for (const auto& v : tr["voltages"]) {
+    const auto name = v["name"].get<std::string>();
+    EXPECT_EQ(v["kind"], name == "middle.fti.in_ext.V" ? "other" : "cpg_mn") << name;
+  }
   EXPECT_EQ(tr["other_states"].size(), 12u);  // the .w states are listed, not drawn
   EXPECT_EQ(tr["footfall"].size(), 3u);
   EXPECT_GE(tr["footfall"][1]["intervals"].size(), 2u);
@@ -292,7 +296,8 @@ TEST(ReportRender, Trajectory) {
   phasmid::testing::write_trajectory_fixture(h5.string());
   expect_renders("trajectory", h5,
                  {"fig-angles-front", "fig-angles-middle", "fig-angles-hind", "fig-angvel-middle", "fig-voltage-middle.thc",
-                  "fig-voltage-middle.ctr", "fig-voltage-middle.fti", "fig-footfall", "table-features",
+                  "fig-voltage-middle.ctr", "fig-voltage-middle.fti", "fig-voltage-other-middle.fti", "fig-footfall",
+                  "table-features",
                   "table-parameters"});
 }
 
