@@ -15,6 +15,12 @@
   Chart.defaults.font.size = 12;
   Chart.defaults.plugins.title.font = { size: 14, weight: 'bold' };
   Chart.defaults.color = '#1d2330';
+  // Linear-axis ticks: plain numbers, exponents only for very small or large magnitudes.
+  Chart.defaults.scales.linear.ticks.callback = function (v) {
+    var a = Math.abs(v);
+    if (a !== 0 && (a < 1e-3 || a >= 1e6)) return v.toExponential(1);
+    return String(Number(v.toPrecision(6)));
+  };
 
   var PALETTE = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#17becf', '#bcbd22', '#7f7f7f'];
   var GAIT_COLORS = { tripod: '#1f77b4', tetrapod: '#2ca02c', wave: '#9467bd', irregular: '#ff7f0e', failed: '#9e9e9e' };
