@@ -253,4 +253,30 @@ inline void write_empty_fixture(const std::string& path) {
   w.commit();
 }
 
+// Odd shapes and types everywhere: the report must list them and still render the rest.
+inline void write_malformed_fixture(const std::string& path) {
+  io::H5Writer w(path);
+  w.write_run_info(fixture_info("malformed"));
+  std::vector<double> t = {0, 1, 2, 3, 4};
+  w.write("/trajectory/time", t, "ms");
+  w.write("/trajectory/angles/middle/fti", std::vector<double>{1, 2, 3, 4, 5}, "deg");
+  w.write("/trajectory/angles/middle/ctr", std::vector<double>{1, 2, 3}, "deg");        // wrong length
+  w.write("/trajectory/angles/hind", std::vector<double>{1, 2, 3, 4, 5}, "deg");        // dataset, not a group
+  w.write("/trajectory/footfall/middle", std::vector<std::string>{"a", "b"});           // strings
+  w.write("/trajectory/states/x.C1.V", std::vector<double>{std::nan(""), 1, 2, 3, 4}, "mV");  // NaN -> gap
+  w.write("/features/matrix", std::vector<double>(100 * 100, 1.0), "1", {100, 100});   // too big for the table
+  w.write("/sensitivity/parameters", std::vector<std::string>{"a", "b"});
+  w.write("/sensitivity/features/period_ms", std::vector<double>{1, 2, 3}, "ms");     // wrong length
+  w.write("/sensitivity/relative/period_ms", std::vector<double>{0.5, -0.25}, "1");
+  w.write("/fit/parameter_names", std::vector<std::string>{"a", "b"});
+  w.write("/fit/estimate", std::vector<double>{1, 2}, "1");
+  w.write("/fit/correlation", std::vector<double>{1, 0, 0}, "1");                     // not n x n
+  w.write("/fit/cost_history", std::vector<double>{3, 0, -1}, "1");                   // not positive: linear axis
+  w.write("/sweep/parameter_names", std::vector<std::string>{"p"});
+  w.write("/sweep/points", std::vector<double>{1, 2, 3}, "1");
+  w.write("/sweep/gait_class", std::vector<std::string>{"tripod"});                   // wrong length
+  w.write_scalar("/lonely_scalar", 1.0, "1");
+  w.commit();
+}
+
 }  // namespace phasmid::testing

@@ -353,6 +353,20 @@ TEST(ReportRender, SweepOneParameter) {
                  {"fig-sweep-period_ms", "fig-sweep-stance_swing_ratio", "fig-sweep-gait", "table-sweep-failures"});
 }
 
+TEST(ReportRender, MalformedGroupsAreListedNotFatal) {
+  fs::path h5 = work_dir() / "malformed.h5";
+  phasmid::testing::write_malformed_fixture(h5.string());
+  auto j = extract(h5.string());
+  std::set<std::string> ignored;
+  for (auto& p : j["ignored"]) ignored.insert(p.get<std::string>());
+  for (const char* p : {"/trajectory/angles/middle/ctr", "/trajectory/angles/hind", "/trajectory/footfall/middle",
+                        "/features/matrix", "/sensitivity/features/period_ms", "/lonely_scalar"})
+    EXPECT_TRUE(ignored.count(p)) << p;
+  expect_renders("malformed", h5,
+                 {"fig-angles-middle", "fig-voltage-x", "fig-sens-period_ms", "fig-sens-heatmap", "fig-fit-cost",
+                  "table-fit-estimates", "list-ignored"});
+}
+
 TEST(ReportRender, FileWithNothingToDraw) {
   fs::path h5 = work_dir() / "empty.h5";
   phasmid::testing::write_empty_fixture(h5.string());
