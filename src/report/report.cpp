@@ -373,8 +373,12 @@ void extract_fit(const H5Reader& r, json& out, std::size_t max_points) {
   f["standard_error"] = vec("/fit/standard_error");
   f["cost_history"] = vec("/fit/cost_history");
   f["cost_units"] = units_of(r, "/fit/cost_history");
-  if (is_numeric_dataset(r, "/fit/correlation") && count(r.dims("/fit/correlation")) == names.size() * names.size())
-    f["correlation"] = vec("/fit/correlation");
+  if (is_numeric_dataset(r, "/fit/correlation")) {
+    if (count(r.dims("/fit/correlation")) == names.size() * names.size())
+      f["correlation"] = vec("/fit/correlation");
+    else
+      note_ignored(out, "/fit/correlation (not n x n for the n parameter_names)");
+  }
   f["final_cost"] = vec("/fit/multistart/final_cost");
   f["kinematics"] = json::array();
   if (is_numeric_dataset(r, "/fit/data/time")) {
@@ -432,8 +436,14 @@ void extract_sweep(const H5Reader& r, json& out) {
   s["features"] = named_vectors(r, out, "/sweep/features", n_points);
   auto gait = strings_or_empty(r, "/sweep/gait_class");
   auto status = strings_or_empty(r, "/sweep/status");
-  if (gait.size() == n_points) s["gait_class"] = gait;
-  if (status.size() == n_points) s["status"] = status;
+  if (gait.size() == n_points)
+    s["gait_class"] = gait;
+  else if (r.exists("/sweep/gait_class"))
+    note_ignored(out, "/sweep/gait_class (not one per point)");
+  if (status.size() == n_points)
+    s["status"] = status;
+  else if (r.exists("/sweep/status"))
+    note_ignored(out, "/sweep/status (not one per point)");
   // Other layouts: a group with a `values` dataset is a 1-D axis (e.g. the Cruse-model stability
   // sweep: /sweep/<parameter>/{values, stable, stable_min, ...}); its same-length datasets are
   // drawn against it, its scalars tabulated. Other numeric vectors are tabulated.

@@ -360,7 +360,9 @@ TEST(ReportRender, MalformedGroupsAreListedNotFatal) {
   std::set<std::string> ignored;
   for (auto& p : j["ignored"]) ignored.insert(p.get<std::string>());
   for (const char* p : {"/trajectory/angles/middle/ctr", "/trajectory/angles/hind", "/trajectory/footfall/middle",
-                        "/features/matrix", "/sensitivity/features/period_ms", "/lonely_scalar"})
+                        "/features/matrix", "/sensitivity/features/period_ms", "/lonely_scalar",
+                        "/fit/correlation (not n x n for the n parameter_names)",
+                        "/sweep/gait_class (not one per point)"})
     EXPECT_TRUE(ignored.count(p)) << p;
   expect_renders("malformed", h5,
                  {"fig-angles-middle", "fig-voltage-x", "fig-sens-period_ms", "fig-sens-heatmap", "fig-fit-cost",
