@@ -281,6 +281,11 @@ TEST(ReportCli, DefaultOutputNextToInputAndErrors) {
   EXPECT_NE(missing.out.find("no such file"), std::string::npos) << missing.out;
   EXPECT_EQ(std::count(missing.out.begin(), missing.out.end(), '\n'), 1) << missing.out;
 
+  Result same = run(q(PHASMID_BINARY) + " report " + q(h5.string()) + " -o " + q(h5.string()) + " 2>&1");
+  EXPECT_NE(same.code, 0);
+  EXPECT_NE(same.out.find("is the input file"), std::string::npos) << same.out;
+  EXPECT_NO_THROW(extract(h5.string()));  // still the HDF5 file
+
   fs::path bad = dir / "bad.h5";
   std::ofstream(bad) << "garbage";
   Result noth5 = run(q(PHASMID_BINARY) + " report " + q(bad.string()) + " 2>&1");
