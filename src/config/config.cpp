@@ -155,7 +155,8 @@ SimulationSettings simulation_settings(const Config& cfg) {
     std::string v = n->value<std::string>().value_or("");
     if (v == "dense") s.solver.linear_solver = solver::LinearSolverKind::Dense;
     else if (v == "band") s.solver.linear_solver = solver::LinearSolverKind::Band;
-    else throw Error(where(cfg, *n) + ": linear_solver must be \"dense\" or \"band\"");
+    else if (v == "klu") s.solver.linear_solver = solver::LinearSolverKind::Klu;
+    else throw Error(where(cfg, *n) + ": linear_solver must be \"dense\", \"band\" or \"klu\"");
   }
   return s;
 }
