@@ -75,7 +75,10 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
     // Fig. 3.11: SF and SB, a mutually inhibitory pair driven centrally. SF presynaptically
     // inhibits the crossed CPG -> IN connections of the PR system, SB the parallel ones.
     const std::string sw = leg + ".switch.";
-    NapIdx q = c.in_mn;
+    // Command neurons: NaP interneurons with the leak of the inhibitory peripheral INs (Table
+    // A.3, g_L = 6.8 nS), which rest near -65 mV without drive (with g_L = 2.8 nS the NaP
+    // current alone holds a plateau, so an undriven neuron would not stay silent).
+    NapIdx q = c.sens_inh;
     q.E_app = m.parameters().index("interneuron.excitatory.E_app");
     size_t drive = def(sw + "drive", 5.0, "nS", kChoice, "central drive of the active command neuron (SF or SB)", 0);
     q.g_app = drive;
@@ -107,7 +110,19 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
     m.add_modulation({L.sb, drive, {after(t_bwd)}, zero});
     m.add_modulation({L.sf, drive, {after(t_fwd)}, zero});
     m.add_modulation({L.sb, zero, {after(t_fwd)}, drive});
-    m.add_modulation({L.sf, zero, {after(t_side)}, drive});
+    // Sideward: "simultaneous inhibition of both the neurons SF and SB" (Section 3.2.2) by a
+    // centrally driven inhibitory neuron (removing SF's drive alone lets SB rebound and hold).
+    q.g_app = zero;
+    size_t stop = m.add_nap_neuron(leg + ".switch.stop", q, -65, 0.9);
+    SynapseIdx si;
+    si.g = def("syn.command_inh.g", 5.0, "nS", kChoice, "inhibition of SF and SB by the sideward command neuron", 0);
+    si.V_h = def("syn.command_inh.V_h", -43, "mV", std::string(kChoice) + ": as Table A.4", "half-activation");
+    si.gamma = def("syn.command_inh.gamma", -10, "1/mV", std::string(kChoice) + ": as Table A.4", "slope");
+    si.E = def("syn.command_inh.E", -80, "mV", std::string(kChoice) + ": as Table A.4", "reversal (inhibitory)");
+    m.add_synapse(stop, L.sf, si);
+    m.add_synapse(stop, L.sb, si);
+    m.add_modulation({stop, drive, {after(t_side)}, zero});
+    m.add_modulation({L.sf, zero, {after(t_side)}, drive});  // and SF's central drive ends
     size_t ext = m.parameters().index(leg + ".fti.cpg_ext.g_app");
     size_t flx = m.parameters().index(leg + ".fti.cpg_flx.g_app");
     size_t s_ext = def(leg + ".sideward.g_app_ext", 0.190, "nS", "Knops 2013, Section 3.1.2 / Fig. 3.4", "extensor CPG drive during sideward stepping", 0);
