@@ -118,6 +118,12 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
   // Horizon used for the checks below.
   double t_end = settings_.t_end_ms;
   for (auto& s : targets_.switches) t_end = std::max(t_end, s.time_ms);
+  for (auto& k : targets_.kinematics) {
+    double off = 0;
+    for (auto& fp : params_)
+      if (fp.id == k.time_offset_parameter) off = fp.estimate ? fp.upper : fp.nominal;
+    t_end = std::max(t_end, k.data.time_ms.back() + off);
+  }
   for (size_t j = 0; j < est_map_.size(); ++j)
     if (est_map_[j].is_model &&
         sensitivity::parameter_moves_switches_or_initial_state(model_, base_p_, est_map_[j].model_index,

@@ -115,7 +115,7 @@ TEST(FitJacobian, ParametersThatMoveSwitchTimesAreRejected) {
   fit::Targets t;
   fit::SwitchCondition c;
   c.channel = "middle.fti";
-  c.time_ms = 250;
+  c.time_ms = 750;  // after the switches at 250 and 500 ms
   c.angle_deg = 110;
   t.switches.push_back(c);
   fit::FitParameter p;
