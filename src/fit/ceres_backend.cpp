@@ -4,6 +4,7 @@
 #include <ceres/ceres.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -163,6 +164,8 @@ FitSummary optimize_ceres(const FitProblem& problem, const std::vector<double>& 
   so.function_tolerance = o.function_tolerance;
   so.parameter_tolerance = o.parameter_tolerance;
   so.gradient_tolerance = o.gradient_tolerance;
+  so.initial_trust_region_radius = o.initial_trust_region_radius;
+  so.max_trust_region_radius = std::max(1e16, o.initial_trust_region_radius);
   so.num_threads = 1;
   so.logging_type = ceres::SILENT;
   so.minimizer_progress_to_stdout = false;

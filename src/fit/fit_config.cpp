@@ -144,7 +144,7 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
   const toml::table& fit = fp ? *fp : kEmpty;
   check_keys(cfg, fit,
              "fit", {"description", "optimizer", "multistart", "sampling", "seed", "threads", "max_iterations",
-                     "max_evaluations", "function_tolerance", "parameter_tolerance", "gradient_tolerance", "loss",
+                     "max_evaluations", "function_tolerance", "parameter_tolerance", "gradient_tolerance", "initial_trust_region_radius", "loss",
                      "loss_scale", "t_end_ms", "discard_ms", "absolute_sigma", "profile", "profile_points",
                      "profile_span", "target_set", "output_dt_ms", "parameter_table", "parameters", "feature",
                      "switch", "data", "min_swing_deg", "min_swing_fraction"});
@@ -164,6 +164,10 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
   if (auto n = get("function_tolerance")) spec.optimizer.function_tolerance = number(cfg, *n, "function_tolerance");
   if (auto n = get("parameter_tolerance")) spec.optimizer.parameter_tolerance = number(cfg, *n, "parameter_tolerance");
   if (auto n = get("gradient_tolerance")) spec.optimizer.gradient_tolerance = number(cfg, *n, "gradient_tolerance");
+  if (auto n = get("initial_trust_region_radius")) {
+    spec.optimizer.initial_trust_region_radius = number(cfg, *n, "initial_trust_region_radius");
+    if (!(spec.optimizer.initial_trust_region_radius > 0)) throw Error(where(cfg, *n) + ": initial_trust_region_radius must be > 0");
+  }
   if (auto n = get("loss")) spec.optimizer.loss = text(cfg, *n, "loss");
   if (auto n = get("loss_scale")) spec.optimizer.loss_scale = number(cfg, *n, "loss_scale");
   {

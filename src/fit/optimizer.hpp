@@ -24,6 +24,7 @@ struct OptimizerOptions {
   double function_tolerance = 1e-10;       // relative change of the cost
   double parameter_tolerance = 1e-10;      // relative change of x
   double gradient_tolerance = 1e-12;
+  double initial_trust_region_radius = 1e4;  // Ceres; small values make the first LM steps cautious
   std::string loss = "none";               // none | huber | cauchy | soft_l1 | arctan (Ceres only)
   double loss_scale = 1.0;                 // in residual units (i.e. tolerances / sigmas)
   bool numeric_jacobian = false;           // Ceres central differences instead of sensitivities (benchmark baseline)
