@@ -6,7 +6,6 @@
 
 #include "common/error.hpp"
 #include "model/leg_tables.hpp"
-#include "sensitivity/sensitivity.hpp"
 
 namespace phasmid::fit {
 namespace {
@@ -115,22 +114,8 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
   }
   if (est_.empty()) throw Error("no parameter is estimated (set estimate = 1 for at least one)");
 
-  // Horizon used for the checks below.
-  double t_end = settings_.t_end_ms;
-  for (auto& s : targets_.switches) t_end = std::max(t_end, s.time_ms);
-  for (auto& k : targets_.kinematics) {
-    double off = 0;
-    for (auto& fp : params_)
-      if (fp.id == k.time_offset_parameter) off = fp.estimate ? fp.upper : fp.nominal;
-    t_end = std::max(t_end, k.data.time_ms.back() + off);
-  }
-  for (size_t j = 0; j < est_map_.size(); ++j)
-    if (est_map_[j].is_model &&
-        sensitivity::parameter_moves_switches_or_initial_state(model_, base_p_, est_map_[j].model_index,
-                                                                std::max(t_end, 1.0)))
-      throw Error(est_[j].origin + (est_[j].origin.empty() ? "" : ": ") + "parameter '" + est_[j].id +
-                  "' moves a switch time or the initial state; its forward sensitivity would not be exact, so it "
-                  "cannot be estimated (fix it, or fit a model where it is smooth)");
+  // Parameters that move switch times or set the initial state are exact too: the solver
+  // applies the jump conditions and s(0) = dy0/dp (docs/sensitivity.md).
 
   // Targets: validate and label residuals.
   std::set<std::string> feats = known_features(model_);

@@ -110,18 +110,27 @@ TEST(FitJacobian, FeatureTargetsMatchFiniteDifferences) {
   expect_matches_fd(p, p.start(), 1e-4);
 }
 
-TEST(FitJacobian, ParametersThatMoveSwitchTimesAreRejected) {
+TEST(FitJacobian, SwitchTimeAndInitialAngleParametersMatchFiniteDifferences) {
+  // Parameters that move the prescribed switches or set the initial state (the solver applies
+  // jump conditions / s(0) = dy0/dp): fitting the switching itself from a recording.
   FtiSetup s;
   fit::Targets t;
-  fit::SwitchCondition c;
-  c.channel = "middle.fti";
-  c.time_ms = 750;  // after the switches at 250 and 500 ms
-  c.angle_deg = 110;
-  t.switches.push_back(c);
-  fit::FitParameter p;
-  p.id = "middle.fti.switch.period_ms";
-  p.nominal = 500;
-  p.lower = 400;
-  p.upper = 600;
-  EXPECT_THROW(fit::FitProblem(*s.model, {p}, t, s.settings), Error);
+  fit::KinematicTarget k;
+  k.data = fittest::synthetic_fti({{"middle.fti.switch.first_phase_ms", 240.0}}, 900.0, 7.0, 0.3, 5);
+  k.origin = "test";
+  t.kinematics.push_back(k);
+  std::vector<fit::FitParameter> ps;
+  for (auto [id, lo, nom, hi] : {std::tuple{"middle.fti.switch.first_phase_ms", 200.0, 250.0, 300.0},
+                                 std::tuple{"middle.fti.switch.period_ms", 450.0, 503.0, 550.0},
+                                 std::tuple{"middle.fti.gamma0", 40.0, 46.0, 50.0},
+                                 std::tuple{"middle.fti.b_v", 5.0, 12.5, 25.0}}) {
+    fit::FitParameter p;
+    p.id = id;
+    p.lower = lo;
+    p.nominal = nom;
+    p.upper = hi;
+    ps.push_back(p);
+  }
+  fit::FitProblem p(*s.model, ps, t, s.settings);
+  expect_matches_fd(p, p.start(), 1e-4);
 }
