@@ -77,6 +77,12 @@ std::set<std::string> sets_named(const config::Config& cfg, const toml::table& f
   return s;
 }
 
+bool glob_matches(const std::string& pat, const std::string& s, size_t i = 0, size_t j = 0) {
+  if (i == pat.size()) return j == s.size();
+  if (pat[i] == '*') return glob_matches(pat, s, i + 1, j) || (j < s.size() && glob_matches(pat, s, i, j + 1));
+  return j < s.size() && pat[i] == s[j] && glob_matches(pat, s, i + 1, j + 1);
+}
+
 bool is_param_spec(const toml::table& t) {
   for (const char* k : {"scale", "lower", "upper", "nominal", "estimate"})
     if (t.contains(k)) return true;
@@ -105,10 +111,15 @@ void inline_parameters(const config::Config& cfg, const toml::table& t, const st
       }
     }
     if (auto n = sub->get("estimate")) p.estimate = boolean(cfg, *n, "estimate");
-    const bool is_model = model.parameters().contains(name);
+    // Default start: the model's value (for a '*' pattern, that of the first match).
+    double model_value = 0.0;
+    for (auto& mp : model.parameters().all())
+      if (mp.name == name || (name.find('*') != std::string::npos && glob_matches(name, mp.name))) {
+        model_value = mp.value;
+        break;
+      }
     if (auto n = sub->get("nominal")) p.nominal = number(cfg, *n, "nominal");
-    else if (is_model) p.nominal = model.parameters().value(name);
-    else p.nominal = 0.0;
+    else p.nominal = model_value;
     if (auto n = sub->get("lower")) p.lower = number(cfg, *n, "lower");
     else if (p.estimate) throw Error(p.origin + ": estimated parameter '" + name + "' needs lower");
     else p.lower = p.nominal;

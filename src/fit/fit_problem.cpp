@@ -42,6 +42,29 @@ std::set<std::string> known_features(const model::OdeModel& m) {
   return f;
 }
 
+// Model parameters named by a parameterId: the name itself, or with '*' (any run of
+// characters) every matching name, all tied to one fitted value.
+bool glob_match(const char* pat, const char* s) {
+  if (*pat == '\0') return *s == '\0';
+  if (*pat == '*') return glob_match(pat + 1, s) || (*s && glob_match(pat, s + 1));
+  return *s && *pat == *s && glob_match(pat + 1, s + 1);
+}
+
+std::vector<size_t> match_parameters(const model::ParameterSet& ps, const std::string& id, const std::string& w) {
+  if (id.find('*') == std::string::npos) {
+    try {
+      return {ps.index(id)};
+    } catch (const Error& e) {
+      throw Error(w + e.what());
+    }
+  }
+  std::vector<size_t> ks;
+  for (size_t k = 0; k < ps.size(); ++k)
+    if (glob_match(id.c_str(), ps.at(k).name.c_str())) ks.push_back(k);
+  if (ks.empty()) throw Error(w + "no model parameter matches '" + id + "'; `phasmid params CONFIG` lists them");
+  return ks;
+}
+
 std::string fmt(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%g", v);
@@ -83,31 +106,30 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
       if (fp.scale != Scale::Lin) throw Error(w + "time offset '" + fp.id + "' must use parameterScale lin");
       continue;
     }
-    size_t k;
-    try {
-      k = ps.index(fp.id);
-    } catch (const Error& e) {
-      throw Error(w + e.what());
-    }
-    const model::Parameter& mp = ps.at(k);
-    if (fp.estimate) {
-      if (fp.lower < mp.lower || fp.upper > mp.upper)
-        throw Error(w + "bounds [" + fmt(fp.lower) + ", " + fmt(fp.upper) + "] of '" + fp.id +
-                    "' leave the admissible range [" + fmt(mp.lower) + ", " + fmt(mp.upper) + "] " + mp.unit);
-    } else {
-      if (fp.nominal < mp.lower || fp.nominal > mp.upper)
-        throw Error(w + "fixed value " + fmt(fp.nominal) + " of '" + fp.id + "' outside the admissible range");
-      base_p_[k] = fp.nominal;
+    std::vector<size_t> ks = match_parameters(ps, fp.id, w);
+    for (size_t k : ks) {
+      const model::Parameter& mp = ps.at(k);
+      if (fp.estimate) {
+        if (fp.lower < mp.lower || fp.upper > mp.upper)
+          throw Error(w + "bounds [" + fmt(fp.lower) + ", " + fmt(fp.upper) + "] of '" + mp.name +
+                      "' leave the admissible range [" + fmt(mp.lower) + ", " + fmt(mp.upper) + "] " + mp.unit);
+      } else {
+        if (fp.nominal < mp.lower || fp.nominal > mp.upper)
+          throw Error(w + "fixed value " + fmt(fp.nominal) + " of '" + mp.name + "' outside the admissible range");
+        base_p_[k] = fp.nominal;
+      }
     }
   }
   for (auto& fp : params_) {
     if (!fp.estimate) continue;
-    EstMap e{false, 0, 0};
+    EstMap e{false, {}, {}};
     if (!offset_ids.count(fp.id)) {
       e.is_model = true;
-      e.model_index = ps.index(fp.id);
-      e.sens_column = sens_params_.size();
-      sens_params_.push_back(e.model_index);
+      e.model_indices = match_parameters(ps, fp.id, "");
+      for (size_t k : e.model_indices) {
+        e.sens_columns.push_back(sens_params_.size());
+        sens_params_.push_back(k);
+      }
     }
     est_.push_back(fp);
     est_map_.push_back(e);
@@ -174,6 +196,17 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
   }
 }
 
+std::string FitProblem::parameter_unit(size_t j) const {
+  if (!est_map_.at(j).is_model) return "ms";
+  return model_.parameters().at(est_map_[j].model_indices.front()).unit;
+}
+
+std::vector<std::string> FitProblem::tied_parameters(size_t j) const {
+  std::vector<std::string> n;
+  for (size_t k : est_map_.at(j).model_indices) n.push_back(model_.parameters().at(k).name);
+  return n;
+}
+
 std::vector<std::string> FitProblem::parameter_names() const {
   std::vector<std::string> n;
   for (auto& p : est_) n.push_back(p.id);
@@ -204,7 +237,7 @@ std::vector<double> FitProblem::to_linear(const std::vector<double>& x) const {
 std::vector<double> FitProblem::model_parameters(const double* x) const {
   std::vector<double> p = base_p_;
   for (size_t j = 0; j < est_.size(); ++j)
-    if (est_map_[j].is_model) p[est_map_[j].model_index] = from_scaled(est_[j].scale, x[j]);
+    for (size_t k : est_map_[j].model_indices) p[k] = from_scaled(est_[j].scale, x[j]);
   return p;
 }
 
@@ -266,7 +299,7 @@ bool FitProblem::evaluate(const double* x, double* r, double* J, std::string* er
     std::vector<double> dth(J ? m * n : 0, 0.0);
     auto set_model_row = [&](size_t row, auto&& dsens /* column c -> value */) {
       for (size_t j = 0; j < n; ++j)
-        if (est_map_[j].is_model) dth[row * n + j] = dsens(est_map_[j].sens_column);
+        for (size_t c : est_map_[j].sens_columns) dth[row * n + j] += dsens(c);  // tied parameters: sum
     };
     size_t row = 0;
 

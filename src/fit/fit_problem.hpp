@@ -38,6 +38,8 @@ class FitProblem {
   const std::vector<FitParameter>& estimated() const { return est_; }
   const std::vector<FitParameter>& all_parameters() const { return params_; }
   std::vector<std::string> parameter_names() const;
+  std::string parameter_unit(size_t j) const;                 // of estimated parameter j
+  std::vector<std::string> tied_parameters(size_t j) const;   // model parameters it sets ('*' ids tie several)
 
   // Scaled start (nominal values) and bounds.
   std::vector<double> start() const;
@@ -82,7 +84,7 @@ class FitProblem {
   ProblemSettings settings_;
   std::vector<double> base_p_;
   // Per estimated parameter: model parameter index, or kinematic-target offset (kind).
-  struct EstMap { bool is_model; size_t model_index; size_t sens_column; };
+  struct EstMap { bool is_model; std::vector<size_t> model_indices, sens_columns; };
   std::vector<EstMap> est_map_;
   std::vector<size_t> sens_params_;
   // Per kinematic target: index into est_ (or -1) of its offset and the fixed offset value.

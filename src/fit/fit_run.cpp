@@ -51,7 +51,6 @@ std::string format_result(const FitProblem& problem, const FitResult& r) {
        << r.multistart.best << "\n";
   }
   os << describe(problem, b);
-  const auto& ps = problem.model().parameters();
   size_t w = 9;
   for (auto& p : problem.estimated()) w = std::max(w, p.id.size());
   char line[512];
@@ -60,7 +59,7 @@ std::string format_result(const FitProblem& problem, const FitResult& r) {
   os << line;
   for (size_t j = 0; j < problem.num_parameters(); ++j) {
     const auto& p = problem.estimated()[j];
-    std::string unit = ps.contains(p.id) ? ps.at(p.id).unit : "ms";
+    std::string unit = problem.parameter_unit(j);
     double se = r.uncertainty.standard_error.size() ? r.uncertainty.standard_error[j] : NAN;
     std::snprintf(line, sizeof line, "  %-*s  %13.6g  %11.3g  %13.6g  %s\n", static_cast<int>(w), p.id.c_str(),
                   r.estimate[j], se, from_scaled(p.scale, b.x_start[j]), unit.c_str());
@@ -73,11 +72,11 @@ std::string format_result(const FitProblem& problem, const FitResult& r) {
 void write_fit_h5(io::H5Writer& out, const FitProblem& problem, const FitSpec& spec, const FitResult& r) {
   const FitSummary& b = r.best();
   const size_t n = problem.num_parameters();
-  const auto& ps = problem.model().parameters();
   std::vector<std::string> names = problem.parameter_names(), units, scales;
   std::vector<double> lo, hi, nominal;
-  for (auto& p : problem.estimated()) {
-    units.push_back(ps.contains(p.id) ? ps.at(p.id).unit : "ms");
+  for (size_t j = 0; j < n; ++j) {
+    const auto& p = problem.estimated()[j];
+    units.push_back(problem.parameter_unit(j));
     scales.push_back(scale_name(p.scale));
     lo.push_back(p.lower);
     hi.push_back(p.upper);
@@ -88,6 +87,10 @@ void write_fit_h5(io::H5Writer& out, const FitProblem& problem, const FitSpec& s
   out.write("/fit/parameter_names", names);
   out.write("/fit/parameter_units", units);
   out.write("/fit/parameter_scale", scales);
+  for (size_t j = 0; j < n; ++j) {
+    auto tied = problem.tied_parameters(j);
+    if (tied.size() > 1) out.write("/fit/tied/" + names[j], tied);
+  }
   out.write("/fit/estimate", r.estimate, pu);
   std::vector<double> se(n, NAN), se_s(n, NAN), start = problem.to_linear(b.x_start);
   for (size_t j = 0; j < n; ++j) {
@@ -181,7 +184,9 @@ void write_fit_h5(io::H5Writer& out, const FitProblem& problem, const FitSpec& s
   // Profiles.
   for (auto& p : r.profiles) {
     const std::string g = "/fit/profile/" + p.parameter;
-    out.write(g + "/values", p.values, ps.contains(p.parameter) ? ps.at(p.parameter).unit : "ms");
+    auto names_ = problem.parameter_names();
+    size_t jp = static_cast<size_t>(std::find(names_.begin(), names_.end(), p.parameter) - names_.begin());
+    out.write(g + "/values", p.values, problem.parameter_unit(jp));
     out.write(g + "/cost", p.cost, "1");
     out.write(g + "/delta_chi2", p.delta_chi2, "1");
     std::vector<std::int64_t> c(p.converged.begin(), p.converged.end());

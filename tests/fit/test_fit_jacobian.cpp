@@ -134,3 +134,29 @@ TEST(FitJacobian, SwitchTimeAndInitialAngleParametersMatchFiniteDifferences) {
   fit::FitProblem p(*s.model, ps, t, s.settings);
   expect_matches_fd(p, p.start(), 1e-4);
 }
+
+TEST(FitJacobian, TiedParametersSumTheirSensitivities) {
+  // '*' in a parameterId ties every matching model parameter to one fitted value.
+  FtiSetup s;
+  fit::Targets t;
+  fit::KinematicTarget k;
+  k.data = fittest::synthetic_fti({}, 800.0, 8.0, 0.3, 9);
+  k.origin = "test";
+  t.kinematics.push_back(k);
+  fit::FitParameter tie;
+  tie.id = "middle.fti.k_E.*";  // k_E.flexion and k_E.extension share one value
+  tie.scale = fit::Scale::Log;
+  tie.lower = 100;
+  tie.nominal = 900;
+  tie.upper = 9000;
+  fit::FitParameter bv;
+  bv.id = "middle.fti.b_v";
+  bv.lower = 5;
+  bv.nominal = 12.5;
+  bv.upper = 25;
+  fit::FitProblem p(*s.model, {tie, bv}, t, s.settings);
+  EXPECT_EQ(p.tied_parameters(0), (std::vector<std::string>{"middle.fti.k_E.flexion", "middle.fti.k_E.extension"}));
+  auto pm = p.model_parameters(p.start().data());
+  EXPECT_NEAR(pm[s.model->parameters().index("middle.fti.k_E.extension")], 900, 1e-9);
+  expect_matches_fd(p, p.start(), 2e-5);
+}
