@@ -158,7 +158,7 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
                      "max_evaluations", "function_tolerance", "parameter_tolerance", "gradient_tolerance", "initial_trust_region_radius", "loss",
                      "loss_scale", "t_end_ms", "discard_ms", "absolute_sigma", "profile", "profile_points",
                      "profile_span", "target_set", "output_dt_ms", "parameter_table", "parameters", "feature",
-                     "switch", "data", "min_swing_deg", "min_swing_fraction"});
+                     "switch", "data", "min_swing_deg", "min_swing_fraction", "sensitivity_error_control"});
 
   // Optimizer and multistart.
   auto get = [&](const char* k) { return fit.get(k); };
@@ -215,6 +215,8 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
     spec.output_dt_ms = number(cfg, *n, "output_dt_ms");
     if (!(spec.output_dt_ms > 0)) throw Error(where(cfg, *n) + ": output_dt_ms must be > 0");
   }
+  if (auto n = get("sensitivity_error_control"))
+    spec.problem.solver.sensitivity_error_control = boolean(cfg, *n, "sensitivity_error_control");
   if (auto n = get("min_swing_deg")) spec.problem.feature_options.min_swing_deg = number(cfg, *n, "min_swing_deg");
   if (auto n = get("min_swing_fraction")) spec.problem.feature_options.min_swing_fraction = number(cfg, *n, "min_swing_fraction");
 

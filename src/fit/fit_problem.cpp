@@ -36,7 +36,7 @@ std::set<std::string> known_features(const model::OdeModel& m) {
     std::string pre = channel_name(a) + ".";
     for (std::string s : {std::string("period_ms"), std::string(n.phase_inc) + "_ms", std::string(n.phase_dec) + "_ms",
                           std::string(n.phase_inc) + "_fraction", std::string("phase_ratio"), std::string("angle_min_deg"),
-                          std::string("angle_max_deg")})
+                          std::string("angle_max_deg"), std::string("phase_lag")})
       f.insert(pre + s);
   }
   return f;
@@ -145,7 +145,8 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
     if (!feats.count(f.feature)) {
       std::string list;
       for (auto& n : feats) list += (list.empty() ? "" : ", ") + n;
-      throw Error(f.origin + ": unknown feature '" + f.feature + "' (this model has: " + list + ")");
+      throw Error(f.origin + ": unknown feature '" + f.feature + "' (features with exact gradients of this model: " + list +
+                  "; leg features such as step_period_ms have no gradients yet)");
     }
     if (!(f.tolerance > 0)) throw Error(f.origin + ": tolerance must be > 0");
     if (!(settings_.t_end_ms > 0)) throw Error(f.origin + ": feature targets need t_end_ms in [fit] or [simulation]");

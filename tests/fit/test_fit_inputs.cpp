@@ -172,3 +172,23 @@ TEST(StartPoints, DeterministicStratifiedAndInsideTheBox) {
     EXPECT_LE(empty, 1) << "dimension " << d;  // point 0 is skipped
   }
 }
+
+TEST(FitConfig, EveryExampleFitConfigBuildsItsProblem) {
+  for (const char* c : {"configs/fit_fti_section31.toml", "configs/fit_single_joint_gapp.toml",
+                        "configs/fit_fti_kinematic_synthetic.toml", "configs/fit_fti_anipose_synthetic.toml",
+                        "configs/fit_tripod_drives.toml"}) {
+    SCOPED_TRACE(c);
+    auto cfg = config::load_config(fittest::source(c));
+    auto m = config::build_model(cfg);
+    auto spec = fit::load_fit_spec(cfg, *m);
+    fit::FitProblem p(*m, spec.parameters, spec.targets, spec.problem);
+    EXPECT_GT(p.num_parameters(), 0u);
+    EXPECT_GE(p.num_residuals(), p.num_parameters() - 1);
+  }
+  // The tripod drives are tied across the three legs.
+  auto cfg = config::load_config(fittest::source("configs/fit_tripod_drives.toml"));
+  auto m = config::build_model(cfg);
+  auto spec = fit::load_fit_spec(cfg, *m);
+  fit::FitProblem p(*m, spec.parameters, spec.targets, spec.problem);
+  EXPECT_EQ(p.tied_parameters(0).size(), 3u);
+}
