@@ -54,8 +54,16 @@ struct SignalGuard {
 std::string gait_class_of(const std::vector<features::Feature>& features) {
   for (const auto& f : features)
     if (f.name == "gait_class") {
+      // Codes of the walking models' `gait_class` feature (branch `leg`, features::classify_gait):
+      // 2 tripod, 1 tetrapod, 0 irregular. Once that lands, features::gait_class_name is the
+      // single source of these labels.
       if (!std::isfinite(f.value)) return "unclassified";
-      return "class " + std::to_string(std::lround(f.value));
+      switch (std::lround(f.value)) {
+        case 0: return "irregular";
+        case 1: return "tetrapod";
+        case 2: return "tripod";
+        default: return "class " + std::to_string(std::lround(f.value));
+      }
     }
   return "ok";
 }
@@ -91,8 +99,25 @@ SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& opt) {
   const SweepSpec spec = parse_sweep(cfg, base_model->parameters(), sim);
   const std::string resolved = config::resolved_config_text(cfg, opt.sets);
   const std::vector<double> base_p = base_model->parameters().values();
-  std::vector<std::size_t> swept;
-  for (auto& p : spec.parameters) swept.push_back(base_model->parameters().index(p.name));
+
+  // Per option combination: its config, base parameter vector and swept parameter indices.
+  std::vector<config::Config> combo_cfg;
+  std::vector<std::vector<double>> combo_p;
+  std::vector<std::vector<std::size_t>> combo_swept;
+  for (std::size_t c = 0; c < spec.n_combos; ++c) {
+    combo_cfg.push_back(spec.config_for(cfg, c));
+    try {
+      auto m = config::build_model(combo_cfg.back(), opt.sets);
+      combo_p.push_back(m->parameters().values());
+      std::vector<std::size_t> idx;
+      for (auto& p : spec.parameters) idx.push_back(m->parameters().index(p.name));
+      combo_swept.push_back(std::move(idx));
+    } catch (const Error& e) {
+      std::string at;
+      for (std::size_t k = 0; k < spec.options.size(); ++k) at = spec.options[k].where[spec.option_value(c, k)];
+      throw Error(at + ": sweep option " + spec.describe_combo(c) + ": " + e.what());
+    }
+  }
 
   SweepOutcome out;
   out.n_points = spec.n_points;
@@ -112,9 +137,11 @@ SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& opt) {
 
   const int nthreads = std::max(1, opt.threads > 0 ? opt.threads : omp_get_max_threads());
   out.threads = nthreads;
-  // One model per thread, built serially: threads share nothing but read-only inputs.
-  std::vector<std::unique_ptr<model::OdeModel>> models(nthreads);
-  for (auto& m : models) m = config::build_model(cfg, opt.sets);
+  // One model per thread and option combination, built serially: threads share nothing but
+  // read-only inputs.
+  std::vector<std::vector<std::unique_ptr<model::OdeModel>>> models(nthreads);
+  for (auto& per_thread : models)
+    for (std::size_t c = 0; c < spec.n_combos; ++c) per_thread.push_back(config::build_model(combo_cfg[c], opt.sets));
   solver::SolverOptions so = sim.solver;
   so.progress = false;
 
@@ -136,7 +163,8 @@ SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& opt) {
     }
     const std::size_t i = pending[k];
     try {
-      PointResult r = evaluate_point(*models[omp_get_thread_num()], base_p, swept, spec, i, so);
+      const std::size_t c = spec.combo_of(i);
+      PointResult r = evaluate_point(*models[omp_get_thread_num()][c], combo_p[c], combo_swept[c], spec, i, so);
       journal.append(i, r);
       std::lock_guard<std::mutex> lock(mu);
       if (r.status != "ok") ++out.n_failed;

@@ -80,6 +80,10 @@ std::uint64_t sweep_fingerprint(const std::string& resolved_config, const SweepS
   s += "\n#design " + spec.design_name + " seed " + std::to_string(spec.seed);
   s += "\n#t " + hexfloat(spec.t_end_ms) + " " + hexfloat(spec.discard_ms);
   for (auto& p : spec.parameters) s += "\n#p " + p.name;
+  for (auto& o : spec.options) {
+    s += "\n#o " + o.name;
+    for (auto& l : o.labels) s += " " + std::to_string(l.size()) + ":" + l;
+  }
   s += "\n#x";
   for (double x : spec.points) s += " " + hexfloat(x);
   return fnv1a(s);
@@ -237,6 +241,16 @@ void write_sweep_h5(const std::string& output, const SweepSpec& spec, const std:
     std::vector<double> col(n);
     for (std::size_t i = 0; i < n; ++i) col[i] = spec.at(i, d);
     w.write("/sweep/parameters/" + spec.parameters[d].name, col, spec.parameters[d].unit);
+  }
+  if (!spec.options.empty()) {
+    std::vector<std::string> onames;
+    for (std::size_t k = 0; k < spec.options.size(); ++k) {
+      onames.push_back(spec.options[k].name);
+      std::vector<std::string> col(n);
+      for (std::size_t i = 0; i < n; ++i) col[i] = spec.options[k].labels[spec.option_value(spec.combo_of(i), k)];
+      w.write("/sweep/options/" + spec.options[k].name, col);
+    }
+    w.write("/sweep/option_names", onames);
   }
   w.ensure_group("/sweep/features");
   for (std::size_t k = 0; k < fnames.size(); ++k) w.write("/sweep/features/" + fnames[k], fvalues[k], funits[k]);

@@ -154,3 +154,52 @@ TEST(SweepConfig, BadInputNamesFileAndLine) {
                 .find("s.toml:13: parameter 'middle.fti.b_v' swept twice"),
             std::string::npos);
 }
+
+TEST(SweepConfig, LinkedNamesFormOneAxisAndOptionsMultiplyTheDesign) {
+  auto s = parse(R"([sweep]
+[[sweep.option]]
+name = "start_phase"
+values = ["flexion", "extension"]
+[[sweep.parameter]]
+names = ["middle.fti.k_E.flexion", "middle.fti.k_F.flexion"]
+values = [[510.0, 296.0], [600.0, 350.0], [700.0, 400.0]]
+[[sweep.parameter]]
+name = "middle.fti.b_v"
+values = [10.0, 12.5]
+)");
+  ASSERT_EQ(s.n_design, 6u);
+  ASSERT_EQ(s.n_combos, 2u);
+  ASSERT_EQ(s.n_points, 12u);
+  ASSERT_EQ(s.parameters.size(), 3u);
+  // rows move together; b_v fastest; the option slowest
+  const double want[6][3] = {{510, 296, 10}, {510, 296, 12.5}, {600, 350, 10},
+                             {600, 350, 12.5}, {700, 400, 10}, {700, 400, 12.5}};
+  for (size_t i = 0; i < 12; ++i)
+    for (size_t d = 0; d < 3; ++d) EXPECT_EQ(s.at(i, d), want[i % 6][d]) << i << "," << d;
+  EXPECT_EQ(s.combo_of(5), 0u);
+  EXPECT_EQ(s.combo_of(6), 1u);
+  EXPECT_EQ(s.describe_combo(1), "start_phase = extension");
+  config::Config cfg = config::parse_config(std::string(kModel) + "[sweep]\n[[sweep.option]]\nname = \"start_phase\"\n"
+                                            "values = [\"flexion\", \"extension\"]\n[[sweep.parameter]]\n"
+                                            "name = \"middle.fti.b_v\"\nvalues = [1]\n", "s.toml");
+  auto m = config::build_model(cfg);
+  auto spec = sweep::parse_sweep(cfg, m->parameters(), config::simulation_settings(cfg));
+  EXPECT_EQ(*spec.config_for(cfg, 1).table["model"]["start_phase"].value<std::string>(), "extension");
+  EXPECT_EQ(*spec.config_for(cfg, 0).table["model"]["start_phase"].value<std::string>(), "flexion");
+
+  EXPECT_NE(error_of("[sweep]\n[[sweep.parameter]]\nnames = [\"middle.fti.b_v\", \"middle.fti.d\"]\nvalues = [[1, 0.3], [2]]\n")
+                .find("s.toml:11: each row of 'values' needs 2 numbers"),
+            std::string::npos);
+  EXPECT_NE(error_of("[sweep]\n[[sweep.option]]\nname = \"type\"\nvalues = [\"single_joint\"]\n[[sweep.parameter]]\n"
+                     "name = \"middle.fti.b_v\"\nvalues = [1]\n")
+                .find("s.toml:10: the model type cannot be swept"),
+            std::string::npos);
+}
+
+#include "sweep/sweep_runner.hpp"
+TEST(SweepGaitClass, LabelFromTheGaitClassFeatureElseOk) {
+  EXPECT_EQ(sweep::gait_class_of({{"period_ms", 500, "ms"}}), "ok");
+  EXPECT_EQ(sweep::gait_class_of({{"period_ms", 500, "ms"}, {"gait_class", 2, "1"}}), "tripod");
+  EXPECT_EQ(sweep::gait_class_of({{"gait_class", 1, "1"}}), "tetrapod");
+  EXPECT_EQ(sweep::gait_class_of({{"gait_class", 0, "1"}}), "irregular");
+}

@@ -172,6 +172,49 @@ TEST(SweepRun, ResumeRefusesAJournalOfADifferentSweep) {
   }
 }
 
+TEST(SweepRun, OptionAxesBuildOneModelPerValueAndBadValuesNameTheLine) {
+  auto dir = tmpdir("options");
+  const std::string head = R"([model]
+type = "mechanical_joint"
+[simulation]
+t_end_ms = 2000
+discard_ms = 500
+[sweep]
+[[sweep.option]]
+name = "start_phase"
+)";
+  const std::string tail = R"(
+[[sweep.parameter]]
+name = "middle.fti.b_v"
+values = [10.0, 12.5, 16.0]
+)";
+  auto cfg = config::parse_config(head + "values = [\"flexion\", \"extension\"]" + tail, "opt.toml");
+  auto r = run(cfg, dir / "o.h5", 2);
+  ASSERT_TRUE(r.complete);
+  EXPECT_EQ(r.n_points, 6u);
+  EXPECT_EQ(r.n_failed, 0u);
+  io::H5Reader h((dir / "o.h5").string());
+  EXPECT_EQ(h.read_strings("/sweep/option_names"), std::vector<std::string>{"start_phase"});
+  EXPECT_EQ(h.read_strings("/sweep/options/start_phase"),
+            (std::vector<std::string>{"flexion", "flexion", "flexion", "extension", "extension", "extension"}));
+  auto fl = h.read_doubles("/sweep/features/middle.fti.flexion_ms");
+  auto b = h.read_doubles("/sweep/parameters/middle.fti.b_v");
+  EXPECT_EQ(b, (std::vector<double>{10, 12.5, 16, 10, 12.5, 16}));
+  // The start phase shifts the prescribed switching; the flexion duration must reflect the model built.
+  for (size_t i = 0; i < 6; ++i) EXPECT_TRUE(std::isfinite(fl[i])) << i;
+  EXPECT_NE(std::memcmp(&fl[0], &fl[3], sizeof(double) * 3), 0) << "flexion- and extension-start runs differ";
+
+  auto bad = config::parse_config(head + "values = [\"flexion\", \"sideways\"]" + tail, "opt.toml");
+  try {
+    run(bad, dir / "bad.h5", 1);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("opt.toml:9: sweep option start_phase = sideways"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "bad.h5.journal"));
+}
+
 #ifdef PHASMID_BINARY
 namespace {
 pid_t spawn(const std::vector<std::string>& args, const fs::path& err) {
