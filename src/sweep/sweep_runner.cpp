@@ -165,7 +165,12 @@ SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& opt) {
     try {
       const std::size_t c = spec.combo_of(i);
       PointResult r = evaluate_point(*models[omp_get_thread_num()][c], combo_p[c], combo_swept[c], spec, i, so);
-      journal.append(i, r);
+      // Keep exactly what the journal holds (hex floats are exact; strings are normalised to
+      // valid UTF-8), so a resumed sweep assembles the very same values.
+      const std::string line = encode_record(i, r);
+      std::size_t back_index = 0;
+      if (!decode_record(line, back_index, r) || back_index != i) throw Error("internal: journal record does not round-trip");
+      journal.append_line(line);
       std::lock_guard<std::mutex> lock(mu);
       if (r.status != "ok") ++out.n_failed;
       results[i] = std::move(r);

@@ -181,8 +181,10 @@ Journal::~Journal() {
   }
 }
 
-void Journal::append(std::size_t index, const PointResult& r) {
-  std::string line = encode_record(index, r) + "\n";
+void Journal::append(std::size_t index, const PointResult& r) { append_line(encode_record(index, r)); }
+
+void Journal::append_line(const std::string& record) {
+  const std::string line = record + "\n";
   std::lock_guard<std::mutex> lock(mu_);
   write_all(fd_, line, path_);
   double t = now_seconds();

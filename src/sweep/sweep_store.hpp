@@ -51,6 +51,7 @@ class Journal {
   const std::map<std::size_t, PointResult>& recovered() const { return recovered_; }
   std::size_t torn_lines() const { return torn_; }
   void append(std::size_t index, const PointResult& r);  // thread-safe; durable against kill
+  void append_line(const std::string& record);            // an encode_record() line
   void sync();                                           // fdatasync
   void close_and_remove();
   const std::string& path() const { return path_; }

@@ -203,3 +203,31 @@ TEST(SweepGaitClass, LabelFromTheGaitClassFeatureElseOk) {
   EXPECT_EQ(sweep::gait_class_of({{"gait_class", 1, "1"}}), "tetrapod");
   EXPECT_EQ(sweep::gait_class_of({{"gait_class", 0, "1"}}), "irregular");
 }
+
+#include <cmath>
+#include <cstring>
+
+#include "sweep/sweep_store.hpp"
+TEST(SweepJournal, RecordsRoundTripBitExactlyAndRejectCorruption) {
+  sweep::PointResult r;
+  r.status = "CVODES failed at t = 0 ms:\nline two \xc3\xa9";  // newline and UTF-8 must stay on one line
+  r.gait_class = "failed";
+  r.features = {{"period_ms", 0.1 + 0.2, "ms"}, {"x", std::nan(""), "1"}, {"tiny", 4.9e-324, "deg"}};
+  std::string line = sweep::encode_record(41, r);
+  EXPECT_EQ(line.find('\n'), std::string::npos);
+  size_t idx = 0;
+  sweep::PointResult back;
+  ASSERT_TRUE(sweep::decode_record(line, idx, back));
+  EXPECT_EQ(idx, 41u);
+  EXPECT_EQ(back.status, r.status);
+  EXPECT_EQ(back.gait_class, "failed");
+  ASSERT_EQ(back.features.size(), 3u);
+  EXPECT_EQ(std::memcmp(&back.features[0].value, &r.features[0].value, sizeof(double)), 0);
+  EXPECT_TRUE(std::isnan(back.features[1].value));
+  EXPECT_EQ(back.features[2].value, 4.9e-324);
+  EXPECT_EQ(back.features[2].unit, "deg");
+  std::string flipped = line;
+  flipped[flipped.size() - 3] ^= 1;  // one bit of the payload
+  EXPECT_FALSE(sweep::decode_record(flipped, idx, back));
+  EXPECT_FALSE(sweep::decode_record(line.substr(0, line.size() / 2), idx, back));
+}
