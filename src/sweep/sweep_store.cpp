@@ -1,6 +1,7 @@
 #include "sweep/sweep_store.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -130,8 +131,16 @@ Journal::Journal(const std::string& path, std::uint64_t fingerprint, std::size_t
   namespace fs = std::filesystem;
   const std::string header = header_line(fingerprint, n_points);
   if (resume && fs::exists(path)) {
+    fd_ = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+    if (fd_ < 0) throw Error(path + ": cannot open journal for appending: " + std::strerror(errno));
+    lock_or_throw();  // before reading: a running sweep may still be appending
+    auto fail = [&](const std::string& msg) {
+      ::close(fd_);
+      fd_ = -1;
+      throw Error(path + ": " + msg);
+    };
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot read journal");
+    if (!in) fail("cannot read journal");
     std::string line;
     std::uintmax_t good_end = 0, pos = 0;
     bool first = true;
@@ -140,10 +149,10 @@ Journal::Journal(const std::string& path, std::uint64_t fingerprint, std::size_t
       pos += line.size() + (complete ? 1 : 0);
       if (first) {
         first = false;
-        if (!complete || line.rfind(kMagic, 0) != 0) throw Error(path + ": not a phasmid sweep journal");
+        if (!complete || line.rfind(kMagic, 0) != 0) fail("not a phasmid sweep journal");
         if (line != header)
-          throw Error(path + ": journal belongs to a different sweep (the config, --set values or [sweep] changed "
-                             "since it was started); delete it to start over");
+          fail("journal belongs to a different sweep (the config, --set values or [sweep] changed since it was "
+               "started); delete it to start over");
         good_end = pos;
         continue;
       }
@@ -158,20 +167,27 @@ Journal::Journal(const std::string& path, std::uint64_t fingerprint, std::size_t
         if (!complete) good_end = pos - line.size();  // a torn tail is cut off before appending
       }
     }
-    if (first) throw Error(path + ": empty sweep journal; delete it to start over");
+    if (first) fail("empty sweep journal; delete it to start over");
     in.close();
-    fs::resize_file(path, good_end);
-    fd_ = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-    if (fd_ < 0) throw Error(path + ": cannot open journal for appending: " + std::strerror(errno));
+    if (::ftruncate(fd_, static_cast<off_t>(good_end)) != 0) fail(std::string("cannot truncate journal: ") + std::strerror(errno));
   } else {
     auto dir = fs::path(path).parent_path();
     if (!dir.empty()) fs::create_directories(dir);
     fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_CLOEXEC, 0644);
     if (fd_ < 0) throw Error(path + ": cannot create journal: " + std::strerror(errno));
+    lock_or_throw();
     write_all(fd_, header + "\n", path_);
     ::fdatasync(fd_);
   }
   last_sync_ = now_seconds();
+}
+
+void Journal::lock_or_throw() {
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd_);
+    fd_ = -1;
+    throw Error(path_ + ": another phasmid sweep is running on this output (journal locked)");
+  }
 }
 
 Journal::~Journal() {

@@ -57,6 +57,7 @@ class Journal {
   const std::string& path() const { return path_; }
 
  private:
+  void lock_or_throw();  // one sweep per journal at a time (flock, released when the process ends)
   std::string path_;
   int fd_ = -1;
   std::mutex mu_;

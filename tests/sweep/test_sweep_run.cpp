@@ -158,6 +158,21 @@ TEST(SweepRun, InterruptedSweepResumesToTheUninterruptedResult) {
   expect_identical(dir / "full.h5", dir / "part.h5");
 }
 
+TEST(SweepRun, ASecondSweepOnTheSameJournalIsRefusedWhileTheFirstHoldsIt) {
+  auto dir = tmpdir("lock");
+  auto cfg = config::parse_config(kSweep, "sweep_test.toml");
+  auto spec_model = config::build_model(cfg);
+  auto spec = sweep::parse_sweep(cfg, spec_model->parameters(), config::simulation_settings(cfg));
+  const std::string resolved = config::resolved_config_text(cfg, {});
+  sweep::Journal held((dir / "s.h5.journal").string(), sweep::sweep_fingerprint(resolved, spec), spec.n_points, false);
+  try {
+    run(cfg, dir / "s.h5", 1, true);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("another phasmid sweep is running"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SweepRun, ResumeRefusesAJournalOfADifferentSweep) {
   auto dir = tmpdir("mismatch");
   auto cfg = config::parse_config(kSweep, "sweep_test.toml");
