@@ -42,12 +42,20 @@ name = "middle.fti.b_v"
 values = [10.0, 12.5, 16.0, 20.0]
 )";
 
-fs::path tmpdir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("phasmid_sweep_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+// A scratch directory removed with everything in it when the test ends.
+struct TempDir {
+  fs::path path;
+  explicit TempDir(const std::string& name)
+      : path(fs::temp_directory_path() / ("phasmid_sweep_" + name + "_" + std::to_string(getpid()))) {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  fs::path operator/(const std::string& leaf) const { return path / leaf; }
+};
 
 sweep::SweepOutcome run(const config::Config& cfg, const fs::path& out, int threads, bool resume = false,
                         long stop_after = -1) {
@@ -92,7 +100,7 @@ size_t journal_records(const fs::path& journal) {
 }  // namespace
 
 TEST(SweepRun, FailedPointIsRecordedWithReasonAndSweepFinishes) {
-  auto dir = tmpdir("fail");
+  TempDir dir("fail");
   auto cfg = config::parse_config(kSweep, "sweep_test.toml");
   auto r = run(cfg, dir / "s.h5", 2);
   ASSERT_TRUE(r.complete);
@@ -125,7 +133,7 @@ TEST(SweepRun, FailedPointIsRecordedWithReasonAndSweepFinishes) {
 }
 
 TEST(SweepRun, OneAndTwoThreadsGiveIdenticalDatasets) {
-  auto dir = tmpdir("threads");
+  TempDir dir("threads");
   auto cfg = config::parse_config(kSweep, "sweep_test.toml");
   auto r1 = run(cfg, dir / "one.h5", 1);
   auto r2 = run(cfg, dir / "two.h5", 2);
@@ -135,7 +143,7 @@ TEST(SweepRun, OneAndTwoThreadsGiveIdenticalDatasets) {
 }
 
 TEST(SweepRun, InterruptedSweepResumesToTheUninterruptedResult) {
-  auto dir = tmpdir("resume");
+  TempDir dir("resume");
   auto cfg = config::parse_config(kSweep, "sweep_test.toml");
   ASSERT_TRUE(run(cfg, dir / "full.h5", 2).complete);
 
@@ -159,7 +167,7 @@ TEST(SweepRun, InterruptedSweepResumesToTheUninterruptedResult) {
 }
 
 TEST(SweepRun, ASecondSweepOnTheSameJournalIsRefusedWhileTheFirstHoldsIt) {
-  auto dir = tmpdir("lock");
+  TempDir dir("lock");
   auto cfg = config::parse_config(kSweep, "sweep_test.toml");
   auto spec_model = config::build_model(cfg);
   auto spec = sweep::parse_sweep(cfg, spec_model->parameters(), config::simulation_settings(cfg));
@@ -174,7 +182,7 @@ TEST(SweepRun, ASecondSweepOnTheSameJournalIsRefusedWhileTheFirstHoldsIt) {
 }
 
 TEST(SweepRun, ResumeRefusesAJournalOfADifferentSweep) {
-  auto dir = tmpdir("mismatch");
+  TempDir dir("mismatch");
   auto cfg = config::parse_config(kSweep, "sweep_test.toml");
   EXPECT_FALSE(run(cfg, dir / "s.h5", 1, false, 2).complete);
   std::string other = kSweep;
@@ -188,7 +196,7 @@ TEST(SweepRun, ResumeRefusesAJournalOfADifferentSweep) {
 }
 
 TEST(SweepRun, OptionAxesBuildOneModelPerValueAndBadValuesNameTheLine) {
-  auto dir = tmpdir("options");
+  TempDir dir("options");
   const std::string head = R"([model]
 type = "mechanical_joint"
 [simulation]
@@ -285,7 +293,7 @@ upper = 600
 }  // namespace
 
 TEST(SweepCli, KilledAndInterruptedProcessesResumeToTheUninterruptedResult) {
-  auto dir = tmpdir("cli");
+  TempDir dir("cli");
   const fs::path cfg_path = dir / "slow.toml";
   { std::ofstream(cfg_path) << kSlowSweep; }
   const std::string bin = PHASMID_BINARY, cfg = cfg_path.string();
