@@ -8,6 +8,7 @@
 #include "common/embedded.hpp"
 #include "common/error.hpp"
 #include "model/mechanical_joint_model.hpp"
+#include "model/leg_network.hpp"
 #include "model/network_builder.hpp"
 
 namespace phasmid::config {
@@ -81,7 +82,8 @@ Config load_config(const std::string& path) {
 std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vector<std::string>& sets) {
   const toml::table* mt = cfg.table["model"].as_table();
   if (!mt) throw Error(cfg.path + ": missing [model] section");
-  check_keys(cfg, *mt, "model", {"type", "leg", "joint", "start_phase", "thc_table", "description"});
+  check_keys(cfg, *mt, "model", {"type", "leg", "joint", "start_phase", "thc_table", "description",
+                                  "direction_switch", "gait", "coupling", "coupling_strength"});
   std::string type = text_of(cfg, *mt, "type", "");
   std::string leg = text_of(cfg, *mt, "leg", "middle");
   std::string thc_table = text_of(cfg, *mt, "thc_table", "");
@@ -112,10 +114,36 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
     m = std::make_unique<model::MechanicalJointModel>(leg, joint, inc, first, 500, angle0, thc_table);
   } else if (type == "single_joint") {
     m = model::build_single_joint_model(leg, joint, thc_table);
+  } else if (type == "leg" || type == "three_legs") {
+    bool sw = false;
+    if (const toml::node* n = mt->get("direction_switch")) {
+      if (auto v = n->value<bool>()) sw = *v;
+      else throw Error(where(cfg, *n) + ": 'direction_switch' must be true or false");
+    }
+    if (type == "leg") {
+      model::LegOptions o;
+      o.thc_set = thc_table;
+      o.direction_switch = sw;
+      m = model::build_leg_model(leg, o);
+    } else {
+      model::ThreeLegOptions o;
+      o.direction_switch = sw;
+      o.gait = text_of(cfg, *mt, "gait", "tetrapod");
+      std::string strength = text_of(cfg, *mt, "coupling_strength", "weak");
+      if (strength != "weak" && strength != "strong")
+        throw Error(where(cfg, *mt->get("coupling_strength")) + ": coupling_strength must be \"weak\" or \"strong\"");
+      o.strong = strength == "strong";
+      try {
+        model::set_coupling_variant(o, text_of(cfg, *mt, "coupling", "inhibitory"));
+        m = model::build_three_leg_model(o);
+      } catch (const Error& e) {
+        throw Error(where(cfg, *mt) + ": " + e.what());
+      }
+    }
   } else {
     const toml::node* n = mt->get("type");
     throw Error((n ? where(cfg, *n) : cfg.path) + ": unknown model type '" + type +
-                "' (expected single_joint or mechanical_joint)");
+                "' (expected single_joint, mechanical_joint, leg or three_legs)");
   }
 
   if (const toml::table* pt = cfg.table["parameters"].as_table()) {
@@ -155,7 +183,8 @@ SimulationSettings simulation_settings(const Config& cfg) {
     std::string v = n->value<std::string>().value_or("");
     if (v == "dense") s.solver.linear_solver = solver::LinearSolverKind::Dense;
     else if (v == "band") s.solver.linear_solver = solver::LinearSolverKind::Band;
-    else throw Error(where(cfg, *n) + ": linear_solver must be \"dense\" or \"band\"");
+    else if (v == "klu") s.solver.linear_solver = solver::LinearSolverKind::Klu;
+    else throw Error(where(cfg, *n) + ": linear_solver must be \"dense\", \"band\" or \"klu\"");
   }
   return s;
 }

@@ -24,6 +24,9 @@ struct FeatureOptions {
   // max(min_swing_deg, min_swing_fraction * angle range) the other way (see docs/features.md).
   double min_swing_deg = 0.5;
   double min_swing_fraction = 0.3;
+  // Walking models: swing or stance episodes shorter than this are ripples of beta around
+  // the ground-contact threshold and are ignored (docs/walking_model.md).
+  double min_contact_ms = 40.0;
   size_t root_offset = 0;      // index of the first feature root in the RootSpec list given to run()
 };
 
@@ -39,13 +42,24 @@ struct FeatureGradient {
   Eigen::VectorXd gradient;  // d value / d p_j, in unit per parameter unit
 };
 
-// One root per angle channel, in channel order: g = y[velocity_state] - 0, both directions.
+// Gait class from the ipsilateral phase lags (each in [0, 1)): 2 tripod (front and hind in
+// phase, middle antiphase), 1 tetrapod (hind -> middle -> front lags 1/3), 0 irregular;
+// a lag counts when within `tolerance` (circular distance, fraction of the period).
+int classify_gait(double hind_to_middle, double middle_to_front, double hind_to_front, double tolerance = 0.1);
+const char* gait_class_name(int gait_class);
+
+// One root per angle channel, in channel order: g = y[velocity_state] - 0, both directions;
+// then, for walking models, one per leg: beta crossing `<leg>.coupling.beta_thr_pr`
+// (touch-down falling, lift-off rising), used by the per-leg gait features.
 // Pass these first in the root list given to Simulator::run (or set FeatureOptions::root_offset).
 std::vector<solver::RootSpec> feature_roots(const model::OdeModel& model);
 
 // Features of every angle channel `<leg>.<joint>` (see docs/features.md):
 //   period_ms, <phase_inc>_ms, <phase_dec>_ms, <phase_inc>_fraction, phase_ratio,
 //   angle_min_deg, angle_max_deg; plus a global `period_ms` (the first channel's period).
+// Walking models add per leg `<leg>.step_period_ms`, `<leg>.stance_ms`, `<leg>.swing_ms`,
+// `<leg>.duty_factor`, and across legs `phase_lag.<a>_to_<b>` and `gait_class` (values only,
+// no gradients; docs/walking_model.md).
 // Features that cannot be computed (too few cycles after discard_ms) are omitted.
 std::vector<Feature> compute_features(const model::OdeModel& model, const solver::SolveResult& result,
                                       const FeatureOptions& options = {});

@@ -14,6 +14,15 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
     for (size_t k = 0; k < n_out; ++k) col[k] = r.state(k, a.velocity_state) * 180.0 / M_PI;
     w.write("/trajectory/angular_velocity/" + a.leg + "/" + a.joint, col, "deg/s");
   }
+  // Footfall pattern of walking models: 1 swing, 0 stance (ground contact: beta below the
+  // leg's `<leg>.coupling.beta_thr_pr`, docs/walking_model.md).
+  for (const auto& a : m.angles()) {
+    const std::string thr = a.leg + ".coupling.beta_thr_pr";
+    if (a.joint != "ctr" || !m.parameters().contains(thr)) continue;
+    const double thr_rad = m.parameters().value(thr) * M_PI / 180.0;
+    for (size_t k = 0; k < n_out; ++k) col[k] = r.state(k, a.angle_state) < thr_rad ? 0.0 : 1.0;
+    w.write("/trajectory/footfall/" + a.leg, col, "1");
+  }
   for (size_t i = 0; i < m.num_states(); ++i) {
     for (size_t k = 0; k < n_out; ++k) col[k] = r.state(k, i);
     w.write("/trajectory/states/" + m.states()[i].name, col, m.states()[i].unit);

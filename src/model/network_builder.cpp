@@ -25,7 +25,11 @@ struct CpgJointValues { double epsilon, C_m, g_app_inc, g_app_dec; };
 CpgJointValues cpg_values(JointType t) {
   switch (t) {
     case JointType::Thc: return {0.0019, 1.1493, 0.165, 0.205};  // retractor 0.165, protractor 0.205
-    case JointType::Ctr: return {0.0012, 1.8308, 0.230, 0.184};  // levator 0.230, depressor 0.184
+    // Levator/depressor: Table A.2 prints 0.230/0.184 nS, which with the CS pathway wired as in
+    // Section 2.5.3 (INCS/IN8 excite the depressor CPG, IN7 inhibits the levator CPG) and the
+    // V_hh = -44 mV CPG give levation 355 ms : depression 240 ms (wrong way round); 0.34/0.14 nS
+    // give 193 : 314 ms (3:5, period 508 ms), grid search (docs/walking_model.md).
+    case JointType::Ctr: return {0.0012, 1.8308, 0.34, 0.14};
     case JointType::Fti: return {0.0023, 0.9154, 0.100, 0.209};  // flexor 0.100, extensor 0.209
   }
   return {};
@@ -119,7 +123,7 @@ NeuronClasses define_neuron_classes(NetworkModel& m) {
 }
 
 JointNetwork add_joint_network(NetworkModel& m, const NeuronClasses& c, const std::string& leg, JointType type,
-                               double angle0_deg, const std::string& thc_set) {
+                               double angle0_deg, const std::string& thc_set, CpgToIn wiring) {
   Defs def{m};
   JointNaming nm = joint_naming(type);
   JointNetwork jn;
@@ -136,8 +140,12 @@ JointNetwork add_joint_network(NetworkModel& m, const NeuronClasses& c, const st
     return m.add_nap_neuron(pre + name, q, V0, h0);
   };
   const std::string inc = nm.muscle_inc, dec = nm.muscle_dec;
-  jn.cpg_inc = nap("cpg_" + inc, cpg, cv.g_app_inc, kA2, "central drive to the " + inc + " CPG neuron", -60, 0.6);
-  jn.cpg_dec = nap("cpg_" + dec, cpg, cv.g_app_dec, kA2, "central drive to the " + dec + " CPG neuron", -30, 0.3);
+  const char* drive_src = type == JointType::Ctr
+                              ? "Table A.2 prints 0.230 (lev) / 0.184 (dep) nS; retuned to the LD 3:5 phase relation and "
+                                "510 ms with the CS pathway of Section 2.5.3 (docs/walking_model.md)"
+                              : kA2;
+  jn.cpg_inc = nap("cpg_" + inc, cpg, cv.g_app_inc, drive_src, "central drive to the " + inc + " CPG neuron", -60, 0.6);
+  jn.cpg_dec = nap("cpg_" + dec, cpg, cv.g_app_dec, drive_src, "central drive to the " + dec + " CPG neuron", -30, 0.3);
   // in_<m> inhibits the motoneuron of muscle m and is excited by the antagonist's CPG (g_d).
   jn.in_inc = nap("in_" + inc, c.in_mn, 1.6, kA3, "drive g_d of the IN inhibiting the " + inc + " MN", -70, 0.9);
   jn.in_dec = nap("in_" + dec, c.in_mn, 1.6, kA3, "drive g_d of the IN inhibiting the " + dec + " MN", -70, 0.9);
@@ -151,13 +159,23 @@ JointNetwork add_joint_network(NetworkModel& m, const NeuronClasses& c, const st
 
   m.add_synapse(jn.cpg_inc, jn.cpg_dec, c.cpg_cpg);
   m.add_synapse(jn.cpg_dec, jn.cpg_inc, c.cpg_cpg);
-  m.add_synapse(jn.cpg_dec, jn.in_inc, c.cpg_in);  // dec CPG active -> inc MN inhibited
-  m.add_synapse(jn.cpg_inc, jn.in_dec, c.cpg_in);
+  if (wiring != CpgToIn::Crossed) {
+    jn.syn_par_dec = m.add_synapse(jn.cpg_dec, jn.in_inc, c.cpg_in);  // dec CPG active -> inc MN inhibited
+    jn.syn_par_inc = m.add_synapse(jn.cpg_inc, jn.in_dec, c.cpg_in);
+  }
+  if (wiring != CpgToIn::Parallel) {
+    jn.syn_crs_dec = m.add_synapse(jn.cpg_dec, jn.in_dec, c.cpg_in);  // dec CPG active -> dec MN inhibited
+    jn.syn_crs_inc = m.add_synapse(jn.cpg_inc, jn.in_inc, c.cpg_in);
+  }
   m.add_synapse(jn.in_inc, jn.mn_inc, c.in_mn_syn);
   m.add_synapse(jn.in_dec, jn.mn_dec, c.in_mn_syn);
-  m.add_synapse(jn.sens_exc, jn.cpg_inc, c.in_cpg_exc);
+  // PR and FE: the sensory pathway excites the retractor / flexor CPG (inc) and inhibits the
+  // protractor / extensor CPG. LD: the CS pathway excites the depressor CPG C4 via IN8 and
+  // inhibits the levator CPG C3 via IN7 (Section 2.5.3), i.e. the dec side.
+  const size_t excited = ld ? jn.cpg_dec : jn.cpg_inc, inhibited = ld ? jn.cpg_inc : jn.cpg_dec;
+  m.add_synapse(jn.sens_exc, excited, c.in_cpg_exc);
   m.add_synapse(jn.sens_exc, jn.sens_inh, c.in_cpg_exc);  // IN3 "is excited by IN4" (Fig. 2.12)
-  m.add_synapse(jn.sens_inh, jn.cpg_dec, c.in_cpg_inh);
+  m.add_synapse(jn.sens_inh, inhibited, c.in_cpg_inh);
 
   JointMechanics mech = define_joint_mechanics(m.parameters(), leg, type, thc_set);
   size_t mus_inc = m.add_muscle(jn.mn_inc, mech.k_inc_in_dec, mech.k_inc_in_inc, pre + inc);

@@ -26,10 +26,20 @@ struct JointNetwork {
   std::string prefix;
   size_t cpg_inc, cpg_dec, in_inc, in_dec, sens_exc, sens_inh, mn_inc, mn_dec;
   size_t joint;
+  // CPG -> IN synapses: "parallel" (inc CPG excites the IN of the dec MN, Fig. 2.12) and,
+  // when present, "crossed" (inc CPG excites the IN of its own MN, Figs. 3.11, 3.17).
+  size_t syn_par_inc = kNoIndex, syn_par_dec = kNoIndex;  // from cpg_inc / cpg_dec
+  size_t syn_crs_inc = kNoIndex, syn_crs_dec = kNoIndex;
 };
 
+// How the CPG drives the MN-inhibiting interneurons: parallel (Fig. 2.12), crossed (the hind
+// leg's FE system, Fig. 3.17), or both (the PR system with the direction switch, Fig. 3.11;
+// the caller gates them presynaptically).
+enum class CpgToIn { Parallel, Crossed, Both };
+
 JointNetwork add_joint_network(NetworkModel& m, const NeuronClasses& c, const std::string& leg, JointType type,
-                               double angle0_deg, const std::string& thc_set = "");
+                               double angle0_deg, const std::string& thc_set = "",
+                               CpgToIn wiring = CpgToIn::Parallel);
 
 std::unique_ptr<NetworkModel> build_single_joint_model(const std::string& leg, JointType type,
                                                        const std::string& thc_set = "");

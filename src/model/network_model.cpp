@@ -1,5 +1,6 @@
 #include "model/network_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/error.hpp"
@@ -62,6 +63,9 @@ std::vector<double> NetworkModel::breakpoints(const std::vector<double>& p, doub
   for (const Modulation& m : modulations_)
     for (const Condition& c : m.conditions)
       if (c.kind == Condition::TimeAfter && p[c.threshold] > 0 && p[c.threshold] < t_end) b.push_back(p[c.threshold]);
+  // One command may step several drives at once: report each time once (sorted).
+  std::sort(b.begin(), b.end());
+  b.erase(std::unique(b.begin(), b.end()), b.end());
   return b;
 }
 

@@ -20,6 +20,8 @@
 
 namespace phasmid::model {
 
+constexpr size_t kNoIndex = static_cast<size_t>(-1);
+
 struct NapIdx {  // parameter indices of a NaP neuron (Section 2.1)
   size_t C_m, epsilon, g_NaP, E_Na, V_hm, gamma_m, V_hh, gamma_h, V_tau_h, gamma_tau, g_L, E_L, g_app, E_app;
 };
@@ -36,9 +38,18 @@ struct Neuron {
   MotoneuronIdx mn{};
 };
 
+// Optional presynaptic inhibition of a synapse (Fig. 3.11, Toth et al. 2012): the synaptic
+// conductance is multiplied by 1 - p[strength] * s_inf(V_gate) with the gating neuron's
+// voltage V_gate and the sigmoid s_inf of (2.20) with p[V_h], p[gamma].
+struct PresynapticGate {
+  size_t neuron = kNoIndex;  // gating neuron (kNoIndex: ungated)
+  size_t strength = 0, V_h = 0, gamma = 0;
+};
+
 struct Synapse {
   size_t pre, post;  // neuron indices
   SynapseIdx q;
+  PresynapticGate gate{};
 };
 
 // A condition of a sensory or central switch; all conditions of a Modulation multiply.
@@ -49,11 +60,14 @@ struct Condition {
   size_t width = 0;        // parameter: deg (sigmoid width)
 };
 
-// Adds p[delta] (nS) to a neuron's applied conductance while the conditions hold.
+// Adds p[delta] (nS) to a neuron's applied conductance while the conditions hold; with a
+// reference parameter it adds p[delta] - p[reference] instead, so that `delta` can name the
+// value the conductance is raised (or lowered) to, e.g. IN4: 0.60 -> 3.90 nS.
 struct Modulation {
   size_t neuron;
   size_t delta;
   std::vector<Condition> conditions;
+  size_t reference = kNoIndex;
 };
 
 struct Muscle {
@@ -79,7 +93,13 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   size_t define(Parameter p) { return params_.add(std::move(p)); }
   size_t add_nap_neuron(const std::string& name, const NapIdx& q, double V0, double h0);
   size_t add_motoneuron(const std::string& name, const MotoneuronIdx& q);
-  void add_synapse(size_t pre, size_t post, const SynapseIdx& q) { synapses_.push_back({pre, post, q}); }
+  size_t add_synapse(size_t pre, size_t post, const SynapseIdx& q, PresynapticGate gate = {}) {
+    synapses_.push_back({pre, post, q, gate});
+    return synapses_.size() - 1;
+  }
+  void set_synapse_gate(size_t synapse, PresynapticGate gate) { synapses_.at(synapse).gate = gate; }
+  const std::vector<Synapse>& synapses() const { return synapses_; }
+  const std::vector<Modulation>& modulations() const { return modulations_; }
   void add_modulation(Modulation m) { modulations_.push_back(std::move(m)); }
   size_t add_muscle(size_t motoneuron, size_t k_rest, size_t k_active, const std::string& name);
   size_t add_joint(const std::string& leg, const JointMechanics& mech, size_t muscle_inc, size_t muscle_dec,
@@ -125,7 +145,13 @@ void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
   for (const Synapse& s : synapses_) {
     const T& V_pre = y[neurons_[s.pre].state];
     const T& V_post = y[neurons_[s.post].state];
-    I_syn[s.post] += synaptic_current(p[s.q.g], p[s.q.V_h], p[s.q.gamma], p[s.q.E], V_pre, V_post);
+    if (s.gate.neuron == kNoIndex) {
+      I_syn[s.post] += synaptic_current(p[s.q.g], p[s.q.V_h], p[s.q.gamma], p[s.q.E], V_pre, V_post);
+    } else {
+      const T& V_gate = y[neurons_[s.gate.neuron].state];
+      T open = T(1.0) - p[s.gate.strength] * boltzmann(V_gate, p[s.gate.V_h], p[s.gate.gamma]);
+      I_syn[s.post] += synaptic_current(T(p[s.q.g] * open), p[s.q.V_h], p[s.q.gamma], p[s.q.E], V_pre, V_post);
+    }
   }
   for (const Modulation& m : modulations_) {
     T gate(1.0);
@@ -142,7 +168,8 @@ void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
           break;
       }
     }
-    g_extra[m.neuron] += p[m.delta] * gate;
+    if (m.reference == kNoIndex) g_extra[m.neuron] += p[m.delta] * gate;
+    else g_extra[m.neuron] += (p[m.delta] - p[m.reference]) * gate;
   }
   for (size_t i = 0; i < neurons_.size(); ++i) {
     const Neuron& n = neurons_[i];

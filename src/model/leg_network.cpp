@@ -1,0 +1,212 @@
+#include "model/leg_network.hpp"
+
+#include <cmath>
+
+#include "common/error.hpp"
+
+namespace phasmid::model {
+namespace {
+const char* k32 = "Knops 2013, Section 3.2";
+const char* k322 = "Knops 2013, Section 3.2.2 / Fig. 3.11 (Toth et al. 2012); strength a documented choice (docs/walking_model.md)";
+const char* kChoice = "documented choice (docs/walking_model.md)";
+constexpr double kNever = 1e9;  // ms: a command time beyond any simulation (command off)
+
+struct Def {
+  NetworkModel& m;
+  size_t operator()(const std::string& name, double v, const char* unit, const std::string& src,
+                    const std::string& desc, double lo = -INFINITY, double hi = INFINITY) {
+    return m.define({name, v, unit, src, desc, lo, hi});
+  }
+};
+
+Condition below(size_t state, size_t thr, size_t width) { return {Condition::AngleBelow, state, thr, width}; }
+Condition above(size_t state, size_t thr, size_t width) { return {Condition::AngleAbove, state, thr, width}; }
+Condition after(size_t t) { return {Condition::TimeAfter, 0, t, 0}; }
+}  // namespace
+
+LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::string& leg, const LegOptions& o) {
+  Def def{m};
+  LegNetwork L;
+  L.leg = leg;
+  auto mid = [&](JointType t) {
+    JointTable tab = joint_table(leg, t, t == JointType::Thc ? o.thc_set : "");
+    return 0.5 * (tab.angle_min_deg + tab.angle_max_deg);
+  };
+  // Order PR, LD, FE as in Fig. 2.13 (top to bottom).
+  L.pr = add_joint_network(m, c, leg, JointType::Thc, mid(JointType::Thc), o.thc_set,
+                           o.direction_switch ? CpgToIn::Both : CpgToIn::Parallel);
+  // LD starts levated (swing): without CS input the levator is active (Section 2.5.3).
+  JointTable ctr = joint_table(leg, JointType::Ctr);
+  L.ld = add_joint_network(m, c, leg, JointType::Ctr, ctr.angle_max_deg);
+  L.fe = add_joint_network(m, c, leg, JointType::Fti, mid(JointType::Fti), "",
+                           o.crossed_fe ? CpgToIn::Crossed : CpgToIn::Parallel);
+  L.beta_state = m.joints()[L.ld.joint].angle_state;
+  L.gamma_state = m.joints()[L.fe.joint].angle_state;
+
+  const std::string pre = leg + ".coupling.";
+  L.beta_thr_pr = def(pre + "beta_thr_pr", 38, "deg", k32, "beta below this: ground contact, PR sensory IN excited");
+  size_t beta_fe = def(pre + "beta_thr_fe", 50, "deg", k32, "beta below this: FE sensory IN (IN12) excited");
+  size_t gamma_thr = def(pre + "gamma_thr", 90, "deg", k32, "gamma above this during ground contact: IN12 reduced (fCO)");
+  L.width = def(pre + "width_deg", 1.0, "deg",
+                "documented choice: smooth threshold width (docs/model.md, docs/walking_model.md)",
+                "width of the sigmoid replacing the angle thresholds", 1e-6);
+  // The PR/FE sensory IN base drives are the joint networks' sens_exc.g_app (0.60 nS);
+  // in the three-leg model the PR one is IN16's 1.6 nS (Section 3.3).
+  size_t pr_base = m.parameters().index(leg + ".thc.sens_exc.g_app");
+  m.parameters().set(pr_base, o.g_pr_swing);
+  size_t fe_base = m.parameters().index(leg + ".fti.sens_exc.g_app");
+  size_t cs_base = m.parameters().index(leg + ".ctr.sens_exc.g_app");
+  size_t g_pr = def(pre + "g_pr_stance", o.g_pr_stance, "nS", o.g_pr_source,
+                    "drive of the PR sensory IN (IN4 / IN16) during ground contact", 0);
+  size_t g_fe = def(pre + "g_fe_stance", 3.00, "nS", k32, "drive of IN12 during ground contact (beta < beta_thr_fe)", 0);
+  size_t g_fco = def(pre + "g_fe_fco", 1.90, "nS", k32, "drive of IN12 during ground contact with gamma > gamma_thr", 0);
+  size_t g_cs = def(pre + "g_cs_on", 2.00, "nS", k32, "drive of INCS after the initial transient (LD oscillates)", 0);
+  size_t cs_on = def(pre + "cs_on_ms", o.cs_on_ms, "ms",
+                     o.cs_on_source.empty() ? std::string(kChoice) + ": end of the 'short transient' of Section 3.2"
+                                            : o.cs_on_source,
+                     "time at which the CS input to the LD system is switched on (LD start time)", 0);
+  // Each Modulation is the (smooth) product of its conditions.
+  m.add_modulation({L.pr.sens_exc, g_pr, {below(L.beta_state, L.beta_thr_pr, L.width)}, pr_base});
+  m.add_modulation({L.fe.sens_exc, g_fe, {below(L.beta_state, beta_fe, L.width)}, fe_base});
+  m.add_modulation({L.fe.sens_exc, g_fco, {below(L.beta_state, beta_fe, L.width), above(L.gamma_state, gamma_thr, L.width)}, g_fe});
+  m.add_modulation({L.ld.sens_exc, g_cs, {after(cs_on)}, cs_base});
+
+  if (o.direction_switch) {
+    // Fig. 3.11: SF and SB, a mutually inhibitory pair driven centrally. SF presynaptically
+    // inhibits the crossed CPG -> IN connections of the PR system, SB the parallel ones.
+    const std::string sw = leg + ".switch.";
+    // Command neurons: NaP interneurons with the leak of the inhibitory peripheral INs (Table
+    // A.3, g_L = 6.8 nS), which rest near -65 mV without drive (with g_L = 2.8 nS the NaP
+    // current alone holds a plateau, so an undriven neuron would not stay silent).
+    NapIdx q = c.sens_inh;
+    q.E_app = m.parameters().index("interneuron.excitatory.E_app");
+    size_t drive = def(sw + "drive", 5.0, "nS", kChoice, "central drive of the active command neuron (SF or SB)", 0);
+    q.g_app = drive;
+    L.sf = m.add_nap_neuron(leg + ".switch.sf", q, -30, 0.3);
+    size_t sb_g = def(sw + "sb.g_app", 0.0, "nS", kChoice, "central drive of SB at the start (forward walking)", 0);
+    q.g_app = sb_g;
+    L.sb = m.add_nap_neuron(leg + ".switch.sb", q, -65, 0.9);
+    m.add_synapse(L.sf, L.sb, c.cpg_cpg);
+    m.add_synapse(L.sb, L.sf, c.cpg_cpg);
+    PresynapticGate g;
+    g.strength = def("syn.presyn.strength", 1.0, "1", k322, "fraction of the CPG -> IN conductance removed by full presynaptic inhibition", 0, 1);
+    g.V_h = def("syn.presyn.V_h", -43, "mV", std::string(kChoice) + ": as the synapses of Table A.4", "half-activation of presynaptic inhibition");
+    g.gamma = def("syn.presyn.gamma", -10, "1/mV", std::string(kChoice) + ": as the CPG synapses of Table A.4", "slope of presynaptic inhibition");
+    g.neuron = L.sb;
+    m.set_synapse_gate(L.pr.syn_par_inc, g);
+    m.set_synapse_gate(L.pr.syn_par_dec, g);
+    g.neuron = L.sf;
+    m.set_synapse_gate(L.pr.syn_crs_inc, g);
+    m.set_synapse_gate(L.pr.syn_crs_dec, g);
+    // Central commands (Section 3.2.2): steps of the command drives at given times.
+    size_t zero = def(sw + "off", 0.0, "nS", kChoice, "drive of an inhibited command neuron", 0);
+    size_t t_bwd = def(leg + ".command.backward_ms", kNever, "ms", "Knops 2013, Fig. 3.10 (6000 ms in middle_leg_switch.toml)",
+                       "central command: switch to backward stepping (SF off, SB on)", 0);
+    size_t t_fwd = def(leg + ".command.forward_ms", kNever, "ms", "Knops 2013, Fig. 3.10 (9250 ms in middle_leg_switch.toml)",
+                       "central command: back to forward stepping after backward_ms (SB off, SF on)", 0);
+    size_t t_side = def(leg + ".command.sideward_ms", kNever, "ms", "Knops 2013, Fig. 3.12 (4690 ms in middle_leg_sideward.toml)",
+                        "central command: sideward stepping (SF and SB inhibited, FE drives changed)", 0);
+    m.add_modulation({L.sf, zero, {after(t_bwd)}, drive});
+    m.add_modulation({L.sb, drive, {after(t_bwd)}, zero});
+    m.add_modulation({L.sf, drive, {after(t_fwd)}, zero});
+    m.add_modulation({L.sb, zero, {after(t_fwd)}, drive});
+    // Sideward: "simultaneous inhibition of both the neurons SF and SB" (Section 3.2.2) by a
+    // centrally driven inhibitory neuron (removing SF's drive alone lets SB rebound and hold).
+    q.g_app = zero;
+    size_t stop = m.add_nap_neuron(leg + ".switch.stop", q, -65, 0.9);
+    SynapseIdx si;
+    si.g = def("syn.command_inh.g", 5.0, "nS", kChoice, "inhibition of SF and SB by the sideward command neuron", 0);
+    si.V_h = def("syn.command_inh.V_h", -43, "mV", std::string(kChoice) + ": as Table A.4", "half-activation");
+    si.gamma = def("syn.command_inh.gamma", -10, "1/mV", std::string(kChoice) + ": as Table A.4", "slope");
+    si.E = def("syn.command_inh.E", -80, "mV", std::string(kChoice) + ": as Table A.4", "reversal (inhibitory)");
+    m.add_synapse(stop, L.sf, si);
+    m.add_synapse(stop, L.sb, si);
+    m.add_modulation({stop, drive, {after(t_side)}, zero});
+    m.add_modulation({L.sf, zero, {after(t_side)}, drive});  // and SF's central drive ends
+    size_t ext = m.parameters().index(leg + ".fti.cpg_ext.g_app");
+    size_t flx = m.parameters().index(leg + ".fti.cpg_flx.g_app");
+    size_t s_ext = def(leg + ".sideward.g_app_ext", 0.190, "nS", "Knops 2013, Section 3.1.2 / Fig. 3.4", "extensor CPG drive during sideward stepping", 0);
+    size_t s_flx = def(leg + ".sideward.g_app_flx", 0.120, "nS", "Knops 2013, Section 3.1.2 / Fig. 3.4", "flexor CPG drive during sideward stepping", 0);
+    m.add_modulation({L.fe.cpg_dec, s_ext, {after(t_side)}, ext});
+    m.add_modulation({L.fe.cpg_inc, s_flx, {after(t_side)}, flx});
+  }
+  return L;
+}
+
+std::unique_ptr<NetworkModel> build_leg_model(const std::string& leg, LegOptions o) {
+  auto m = std::make_unique<NetworkModel>("leg");
+  NeuronClasses c = define_neuron_classes(*m);
+  if (leg == "hind") o.crossed_fe = true;
+  add_leg_network(*m, c, leg, o);
+  return m;
+}
+
+void set_coupling_variant(ThreeLegOptions& o, const std::string& v) {
+  using S = CouplingSign;
+  if (v == "inhibitory") o.sign[0] = o.sign[1] = o.sign[2] = S::Inhibitory;
+  else if (v == "excitatory") o.sign[0] = o.sign[1] = o.sign[2] = S::Excitatory;
+  else if (v == "mixed") {  // Fig. 3.20 E / 3.22 E: excitatory from front and hind, inhibitory from middle
+    o.sign[0] = S::Excitatory;
+    o.sign[1] = S::Inhibitory;
+    o.sign[2] = S::Excitatory;
+  } else
+    throw Error("unknown coupling variant '" + v + "' (expected inhibitory, excitatory or mixed)");
+}
+
+std::unique_ptr<NetworkModel> build_three_leg_model(const ThreeLegOptions& o) {
+  auto m = std::make_unique<NetworkModel>("three_legs");
+  NeuronClasses c = define_neuron_classes(*m);
+  Def def{*m};
+  const char* k33 = "Knops 2013, Section 3.3";
+  const bool tripod = o.gait == "tripod";
+  if (!tripod && o.gait != "tetrapod") throw Error("unknown gait '" + o.gait + "' (expected tetrapod or tripod)");
+  const double T = tripod ? 442.0 : 510.0, start = 200.0;
+  // LD start times (Section 2.5.4): tetrapod hind, middle +T/3, front +2T/3 (Fig. 3.21);
+  // tripod middle first, front and hind +T/2 together (Fig. 3.23).
+  std::vector<std::string> legs = {"front", "middle", "hind"};
+  double cs_on[3];
+  if (tripod) {
+    cs_on[1] = start;
+    cs_on[0] = cs_on[2] = start + T / 2;
+  } else {
+    cs_on[2] = start;
+    cs_on[1] = start + T / 3;
+    cs_on[0] = start + 2 * T / 3;
+  }
+  std::vector<LegNetwork> L;
+  for (int i = 0; i < 3; ++i) {
+    LegOptions lo;
+    lo.direction_switch = o.direction_switch;
+    lo.crossed_fe = legs[i] == "hind";
+    lo.g_pr_swing = 1.6;
+    lo.g_pr_stance = 3.3;
+    lo.g_pr_source = "Knops 2013, Section 3.3 (IN16: 1.6 -> 3.3 nS)";
+    lo.cs_on_ms = cs_on[i];
+    lo.cs_on_source = std::string("Knops 2013, Section 2.5.4 (LD start times, lag ") + (tripod ? "1/2" : "1/3") +
+                      " of the period)";
+    L.push_back(add_leg_network(*m, c, legs[i], lo));
+    if (tripod) {  // Section 3.3: g_app3 0.23 -> 0.26, g_app4 0.1843 -> 0.17 (442 ms)
+      m->parameters().set(legs[i] + ".ctr.cpg_lev.g_app", 0.26, "tripod (Knops 2013, Section 3.3)");
+      m->parameters().set(legs[i] + ".ctr.cpg_dep.g_app", 0.17, "tripod (Knops 2013, Section 3.3)");
+    }
+  }
+  // Intersegmental couplings (Section 2.5.4, Fig. 2.15): beta of each leg to the next caudal
+  // PR sensory IN, front -> middle -> hind -> front. While the source leg has ground contact
+  // and the target leg is lifted, the target's IN16 drive changes by g (weak inhibitory:
+  // -0.6 nS, 1.6 -> 1.0 nS; with own ground contact it stays 3.3 nS, Section 3.3).
+  const double g_abs = o.strong ? 1.5 : 0.6;
+  for (int i = 0; i < 3; ++i) {
+    int j = (i + 1) % 3;
+    double sign = o.sign[i] == CouplingSign::Inhibitory ? -1.0 : 1.0;
+    size_t g = def("coupling." + legs[i] + "_to_" + legs[j] + ".g", sign * g_abs, "nS",
+                   o.strong ? std::string(kChoice) + ": 'strong' coupling (2.5x the weak 0.6 nS of Section 3.3)"
+                            : std::string(k33) + " (Delta g_app,IN16 = 0.6 nS; negative: inhibitory)",
+                   "change of the target leg's PR sensory IN drive while the source leg has ground contact and "
+                   "the target leg is lifted (negative: inhibitory)");
+    m->add_modulation({L[j].pr.sens_exc, g,
+                       {below(L[i].beta_state, L[i].beta_thr_pr, L[i].width), above(L[j].beta_state, L[j].beta_thr_pr, L[j].width)}});
+  }
+  return m;
+}
+
+}  // namespace phasmid::model
