@@ -1,5 +1,7 @@
 #include "io/trajectory_writer.hpp"
 
+#include "model/body_kinematics.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -58,6 +60,22 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
         w.write("/trajectory/footfall/R" + it->second, d, "1");
       }
     }
+  }
+  // Curve walking (Section 3.2.3): body path from the two middle legs, docs/walking_model.md.
+  if (m.parameters().contains("body.reach_mm") && m.parameters().contains("L2.coupling.beta_thr_pr")) {
+    std::map<std::string, std::vector<double>> a;
+    for (const auto& ch : m.angles()) {
+      if (ch.leg != "L2" && ch.leg != "R2") continue;
+      std::vector<double> x(n_out);
+      for (size_t k = 0; k < n_out; ++k) x[k] = r.state(k, ch.angle_state) * 180.0 / M_PI;
+      a[ch.leg + "." + ch.joint] = x;
+    }
+    model::BodyPath bp = model::integrate_body_path(
+        r.t, a["L2.thc"], a["L2.ctr"], a["R2.thc"], a["R2.ctr"], m.parameters().value("L2.coupling.beta_thr_pr"),
+        m.parameters().value("body.reach_mm"), m.parameters().value("body.half_width_mm"));
+    w.write("/body/x", bp.x_mm, "mm");
+    w.write("/body/y", bp.y_mm, "mm");
+    w.write("/body/heading", bp.heading_deg, "deg");
   }
   for (size_t i = 0; i < m.num_states(); ++i) {
     for (size_t k = 0; k < n_out; ++k) col[k] = r.state(k, i);

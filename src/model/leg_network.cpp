@@ -169,6 +169,13 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
     size_t s_flx = def(leg + ".sideward.g_app_flx", 0.120, "nS", "Knops 2013, Section 3.1.2 / Fig. 3.4", "flexor CPG drive during sideward stepping", 0);
     m.add_modulation({L.fe.cpg_dec, s_ext, {after(t_side)}, ext});
     m.add_modulation({L.fe.cpg_inc, s_flx, {after(t_side)}, flx});
+    // End of sideward stepping (curve walking, Section 3.2.3): everything back to forward.
+    size_t t_side_end = def(leg + ".command.sideward_end_ms", kNever, "ms", "Knops 2013, Section 3.2.3 (curve walking)",
+                            "central command: back to forward stepping after sideward_ms", 0);
+    m.add_modulation({stop, zero, {after(t_side_end)}, drive});
+    m.add_modulation({L.sf, drive, {after(t_side_end)}, zero});
+    m.add_modulation({L.fe.cpg_dec, ext, {after(t_side_end)}, s_ext});
+    m.add_modulation({L.fe.cpg_inc, flx, {after(t_side_end)}, s_flx});
   }
   return L;
 }
@@ -271,6 +278,28 @@ std::unique_ptr<NetworkModel> build_three_leg_model(const ThreeLegOptions& o) {
     m->add_modulation({L[j].pr.sens_exc, g,
                        {below(L[i].beta_state, L[i].beta_thr_pr, L[i].width), above(L[j].beta_state, L[j].beta_thr_pr, L[j].width)}});
   }
+  return m;
+}
+
+std::unique_ptr<NetworkModel> build_curve_walking_model() {
+  // Section 3.2.3: two middle legs (L2, R2; Table A.17 ThC as in Knops et al. 2012) with the
+  // direction switch, alternating with half a period; the other legs are passive supports.
+  auto m = std::make_unique<NetworkModel>("curve_walking");
+  NeuronClasses c = define_neuron_classes(*m);
+  Def def{*m};
+  for (const char* leg : {"L2", "R2"}) {
+    LegOptions o;
+    o.thc_set = "A.17";
+    o.direction_switch = true;
+    o.cs_on_ms = 100.0;
+    o.cs_on_source = std::string(kChoice) + ": CS input on; the start time is ld_release_ms";
+    o.ld_release_ms = std::string(leg) == "L2" ? 1500.0 : 1755.0;
+    o.ld_release_source = "Knops 2013, Section 3.2.3 (left and right middle legs alternate with half a period, 255 ms)";
+    add_leg_network(*m, c, leg, o);
+  }
+  def("body.reach_mm", 15.0, "mm", std::string(kChoice) + ": horizontal distance ThC joint - foot (femur 13 mm, tibia 12 mm, Table A.13, projected)",
+      "length of the leg's horizontal lever in the kinematic body model", 0);
+  def("body.half_width_mm", 2.0, "mm", std::string(kChoice) + ": half the mesothorax width", "lateral offset of the ThC joints", 0);
   return m;
 }
 

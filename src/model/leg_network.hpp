@@ -53,6 +53,10 @@ struct ThreeLegOptions {
   bool direction_switch = false;
 };
 std::unique_ptr<NetworkModel> build_three_leg_model(const ThreeLegOptions& o);
+
+// type "curve_walking" (Section 3.2.3): left and right middle legs L2, R2 with direction
+// switches, half a period apart, plus the body parameters of body_kinematics.hpp.
+std::unique_ptr<NetworkModel> build_curve_walking_model();
 // "inhibitory" | "excitatory" | "mixed" (Fig. 3.19 C: hind -> front excitatory, others inhibitory)
 void set_coupling_variant(ThreeLegOptions& o, const std::string& variant);
 
