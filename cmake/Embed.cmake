@@ -2,7 +2,8 @@
 # so that `phasmid demo` and `phasmid report` work without the source tree.
 file(GLOB_RECURSE PHASMID_EMBED_FILES CONFIGURE_DEPENDS
   ${CMAKE_SOURCE_DIR}/configs/*.toml
-  ${CMAKE_SOURCE_DIR}/reports/*.html ${CMAKE_SOURCE_DIR}/reports/*.js ${CMAKE_SOURCE_DIR}/reports/*.css)
+  ${CMAKE_SOURCE_DIR}/reports/*.html ${CMAKE_SOURCE_DIR}/reports/*.js ${CMAKE_SOURCE_DIR}/reports/*.css
+  ${CMAKE_SOURCE_DIR}/datasets/simroach2/*.csv)
 set(_embed_cpp ${CMAKE_BINARY_DIR}/generated/phasmid_embedded.cpp)
 set(_embed_list ${CMAKE_BINARY_DIR}/generated/embedded_files.txt)
 string(REPLACE ";" "\n" _embed_lines "${PHASMID_EMBED_FILES}")

@@ -8,7 +8,7 @@ PACKAGES=(
   build-essential cmake pkg-config
   libsundials-dev libceres-dev libnlopt-cxx-dev libnlopt-dev libeigen3-dev libhdf5-dev
   libtomlplusplus-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev fonts-liberation
 )
 # Report tests render the HTML reports in a real browser.
 if [ "${PHASMID_WITH_BROWSER:-1}" = 1 ]; then PACKAGES+=(chromium); fi

@@ -14,15 +14,13 @@ namespace {
 
 int run_features(const std::string& path, bool json) {
   io::H5Reader in(path);  // throws "no such file" / "not an HDF5 file"
-  if (!in.exists("/") || [&] {
-        try {
-          in.read_string_attribute("/", "phasmid_version");
-          return false;
-        } catch (const Error&) {
-          return true;
-        }
-      }())
-    throw Error(path + ": not a phasmid file (no phasmid_version attribute)");
+  bool phasmid_file = true;
+  try {
+    in.read_string_attribute("/", "phasmid_version");
+  } catch (const Error&) {
+    phasmid_file = false;
+  }
+  if (!phasmid_file) throw Error(path + ": not a phasmid file (no phasmid_version attribute)");
   std::vector<features::Feature> fs = features::read_features_h5(in);
   if (json) {
     nlohmann::json out = nlohmann::json::array();

@@ -183,9 +183,11 @@ SimulationSettings simulation_settings(const Config& cfg) {
   get("max_step_ms", s.solver.max_step_ms, 0);
   if (const toml::node* n = st->get("linear_solver")) {
     std::string v = n->value<std::string>().value_or("");
-    if (v == "dense") s.solver.linear_solver = solver::LinearSolverKind::Dense;
+    if (v == "auto") s.solver.linear_solver = solver::LinearSolverKind::Auto;
+    else if (v == "dense") s.solver.linear_solver = solver::LinearSolverKind::Dense;
     else if (v == "band") s.solver.linear_solver = solver::LinearSolverKind::Band;
-    else throw Error(where(cfg, *n) + ": linear_solver must be \"dense\" or \"band\"");
+    else if (v == "klu") s.solver.linear_solver = solver::LinearSolverKind::Klu;
+    else throw Error(where(cfg, *n) + ": linear_solver must be \"auto\", \"dense\", \"band\" or \"klu\"");
   }
   return s;
 }

@@ -250,6 +250,9 @@ std::vector<DualFeature> compute(const model::OdeModel& model, const solver::Sol
   std::vector<solver::RootSpec> roots = feature_roots(model);
   std::vector<DualFeature> out;
   bool have_global = false;
+  std::vector<Dual> ref_max;  // maxima of the first channel (reference for phase lags)
+  Dual ref_period;
+  bool have_ref = false;
   for (size_t c = 0; c < model.angles().size(); ++c) {
     const auto& ch = model.angles()[c];
     const std::string pre = ch.leg + "." + ch.joint + ".";
@@ -270,6 +273,23 @@ std::vector<DualFeature> compute(const model::OdeModel& model, const solver::Sol
         have_global = true;
       }
       if (!inc.empty()) out.push_back({pre + nm.phase_inc + "_fraction", mean(inc, ns) / period, "1"});
+    }
+    if (c == 0 && t_max.size() >= 2) {
+      ref_max = t_max;
+      ref_period = scaled(t_max.back() - t_max.front(), 1.0 / (t_max.size() - 1));
+      have_ref = true;
+    }
+    if (c > 0 && have_ref && !t_max.empty()) {
+      // Phase lag: time from the latest maximum of the first channel to each maximum of this
+      // one, in periods of the first channel (in [0, 1)).
+      std::vector<Dual> lags;
+      for (const Dual& t : t_max) {
+        const Dual* before = nullptr;
+        for (const Dual& r : ref_max)
+          if (r.v <= t.v) before = &r;
+        if (before && t.v - before->v < ref_period.v) lags.push_back((t - *before) / ref_period);
+      }
+      if (!lags.empty()) out.push_back({pre + "phase_lag", mean(lags, ns), "1"});
     }
     if (!inc.empty()) out.push_back({pre + nm.phase_inc + "_ms", mean(inc, ns), "ms"});
     if (!dec.empty()) out.push_back({pre + nm.phase_dec + "_ms", mean(dec, ns), "ms"});

@@ -25,16 +25,14 @@ size_t SensitivityReport::feature_index(const std::string& name) const {
   throw Error("no feature '" + name + "' in the sensitivity report");
 }
 
-bool parameter_moves_switches_or_initial_state(const model::OdeModel& model, const std::vector<double>& p, size_t k,
-                                               double t_end) {
+namespace {
+std::vector<double> nudged(const std::vector<double>& p, size_t k) {
   std::vector<double> q = p;
   q[k] = p[k] + 1e-6 * std::max(std::abs(p[k]), 1e-3);
-  if (model.initial_state(p) != model.initial_state(q)) return true;
-  std::vector<double> b0 = model.breakpoints(p, t_end), b1 = model.breakpoints(q, t_end);
-  std::sort(b0.begin(), b0.end());
-  std::sort(b1.begin(), b1.end());
-  return b0 != b1;
+  return q;
 }
+}  // namespace
+
 
 namespace {
 
@@ -104,14 +102,15 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
   // Columns done by forward sensitivities, the rest by finite differences.
   std::vector<size_t> fwd_cols, fd_cols;
   for (size_t j = 0; j < np; ++j) {
-    bool fd = opt.method == Method::FiniteDifference ||
-              parameter_moves_switches_or_initial_state(model, p, idx[j], opt.t_end_ms);
+    bool fd = opt.method == Method::FiniteDifference;
     (fd ? fd_cols : fwd_cols).push_back(j);
     rep.parameter_method.push_back(fd ? "fd" : "forward");
   }
   std::vector<size_t> fwd_params;
   for (size_t j : fwd_cols) fwd_params.push_back(idx[j]);
 
+  // Parameters that move a switch time or the initial state are handled by the solver
+  // (initial sensitivities dy0/dp and jump conditions at parameter-dependent switches).
   solver::SolveResult nominal = sim.run(p, grid, roots, fwd_params);
   rep.stats = nominal.stats;
   rep.features = features::compute_features(model, nominal, fopt);

@@ -39,9 +39,7 @@ struct SensitivityReport {
   Method method = Method::Forward;
   std::vector<std::string> parameters, parameter_units;
   std::vector<double> parameter_values;
-  // How each column was obtained: "forward", or "fd" for --method fd and for parameters the
-  // forward method cannot treat exactly (they move a breakpoint or the initial state; see
-  // docs/sensitivity.md).
+  // How each column was obtained: "forward" or "fd".
   std::vector<std::string> parameter_method;
   std::vector<features::Feature> features;  // nominal values
   Eigen::MatrixXd absolute;  // features x parameters: dF/dp (feature unit per parameter unit)
@@ -63,11 +61,6 @@ struct SensitivityReport {
     return trajectory[(k * state_names.size() + i) * parameters.size() + j];
   }
 };
-
-// Whether a parameter moves one of the model's breakpoints or its initial state (then
-// forward sensitivities without jump conditions would be wrong for it).
-bool parameter_moves_switches_or_initial_state(const model::OdeModel& model, const std::vector<double>& p, size_t k,
-                                               double t_end);
 
 SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vector<double> p,
                                         const SensitivityOptions& options);

@@ -4,7 +4,10 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_band.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 #include <sunlinsol/sunlinsol_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <unistd.h>
@@ -36,6 +39,9 @@ struct CallbackData {
   std::vector<JetK> yK, pK, fK;
   std::vector<Jet1> y1, p1, f1;
   long sens_evals = 0;
+  // Sparse (KLU) Jacobians: column-compressed pattern and the dense scratch it is filled from.
+  std::vector<sunindextype> col_ptr, row_idx;
+  std::vector<double> dense_scratch;
 };
 
 int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* ud) {
@@ -79,6 +85,46 @@ int jac_band_cb(sunrealtype t, N_Vector y, N_Vector, SUNMatrix Jm, void* ud, N_V
   return 0;
 }
 
+int jac_sparse_cb(sunrealtype t, N_Vector y, N_Vector, SUNMatrix Jm, void* ud, N_Vector, N_Vector, N_Vector) {
+  auto* d = static_cast<CallbackData*>(ud);
+  d->dense_scratch.resize(d->n * d->n);
+  fill_jacobian(d, t, N_VGetArrayPointer(y), d->dense_scratch.data());
+  sunindextype* cp = SUNSparseMatrix_IndexPointers(Jm);
+  sunindextype* ri = SUNSparseMatrix_IndexValues(Jm);
+  sunrealtype* v = SUNSparseMatrix_Data(Jm);
+  std::copy(d->col_ptr.begin(), d->col_ptr.end(), cp);
+  std::copy(d->row_idx.begin(), d->row_idx.end(), ri);
+  for (size_t j = 0; j < d->n; ++j)
+    for (sunindextype k = d->col_ptr[j]; k < d->col_ptr[j + 1]; ++k) v[k] = d->dense_scratch[j * d->n + d->row_idx[k]];
+  return 0;
+}
+
+// Structural sparsity of df/dy: union of the nonzeros of AD Jacobians at the initial state and
+// at randomly perturbed states (deterministic seed), plus the diagonal (needed by I - gamma J).
+void sparsity_pattern(CallbackData* d, const std::vector<double>& y0) {
+  const size_t n = d->n;
+  std::vector<char> nz(n * n, 0);
+  std::vector<double> J(n * n), y(n);
+  unsigned long long state = 0x9E3779B97F4A7C15ULL;
+  auto uniform = [&] {
+    state ^= state << 13; state ^= state >> 7; state ^= state << 17;
+    return (state >> 11) * (1.0 / 9007199254740992.0);
+  };
+  for (int sample = 0; sample < 4; ++sample) {
+    for (size_t i = 0; i < n; ++i) y[i] = sample == 0 ? y0[i] : y0[i] + (uniform() - 0.5) * (0.2 + 0.2 * std::abs(y0[i]));
+    fill_jacobian(d, 0.0, y.data(), J.data());
+    for (size_t k = 0; k < n * n; ++k)
+      if (J[k] != 0.0) nz[k] = 1;
+  }
+  d->col_ptr.assign(1, 0);
+  d->row_idx.clear();
+  for (size_t j = 0; j < n; ++j) {
+    for (size_t i = 0; i < n; ++i)
+      if (nz[j * n + i] || i == j) d->row_idx.push_back(static_cast<sunindextype>(i));
+    d->col_ptr.push_back(static_cast<sunindextype>(d->row_idx.size()));
+  }
+}
+
 // One sensitivity right-hand side: J s_is + df/dp_is, as a single directional derivative.
 int sens_rhs_cb(int, sunrealtype t, N_Vector y, N_Vector, int is, N_Vector yS, N_Vector ySdot, void* ud, N_Vector,
                 N_Vector) {
@@ -115,7 +161,11 @@ struct CvodeHandles {
   int ns = 0;
   SUNMatrix A = nullptr;
   SUNLinearSolver LS = nullptr;
+  SUNNonlinearSolver NLS = nullptr;
+  SUNNonlinearSolver NLS_sens = nullptr;
   ~CvodeHandles() {
+    if (NLS_sens) SUNNonlinSolFree(NLS_sens);
+    if (NLS) SUNNonlinSolFree(NLS);
     if (mem) CVodeFree(&mem);
     if (LS) SUNLinSolFree(LS);
     if (A) SUNMatDestroy(A);
@@ -184,7 +234,8 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   h.y = N_VNew_Serial(n, h.ctx);
   std::vector<double> y0 = model_.initial_state(p);
   for (size_t i = 0; i < n; ++i) NV_Ith_S(h.y, i) = y0[i];
-  h.mem = CVodeCreate(CV_BDF, h.ctx);
+  const bool adams = options_.integrator == IntegratorKind::Adams;
+  h.mem = CVodeCreate(adams ? CV_ADAMS : CV_BDF, h.ctx);
   if (!h.mem) throw SolverError("CVodeCreate failed");
   const double t0 = 0.0;
   check_flag(CVodeInit(h.mem, rhs_cb, t0, h.y), "CVodeInit");
@@ -196,23 +247,50 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
 
   int bw = model_.jacobian_half_bandwidth();
   bool band = options_.linear_solver == LinearSolverKind::Band && bw >= 0;
-  if (band) {
+  // KLU needs an exact Jacobian function (a difference quotient is only available for dense/band).
+  const bool want_klu = options_.linear_solver == LinearSolverKind::Klu ||
+                        (options_.linear_solver == LinearSolverKind::Auto && n > kDenseMaxStates);
+  const bool klu = want_klu && options_.jacobian == JacobianKind::AutoDiff;
+  if (adams) {
+    h.NLS = SUNNonlinSol_FixedPoint(h.y, 0, h.ctx);
+    check_flag(CVodeSetNonlinearSolver(h.mem, h.NLS), "CVodeSetNonlinearSolver");
+  } else if (band) {
     h.A = SUNBandMatrix(n, bw, bw, h.ctx);
     h.LS = SUNLinSol_Band(h.y, h.A, h.ctx);
+  } else if (klu) {
+    sparsity_pattern(&d, y0);
+    h.A = SUNSparseMatrix(n, n, static_cast<sunindextype>(d.row_idx.size()), CSC_MAT, h.ctx);
+    h.LS = SUNLinSol_KLU(h.y, h.A, h.ctx);
   } else {
     h.A = SUNDenseMatrix(n, n, h.ctx);
     h.LS = SUNLinSol_Dense(h.y, h.A, h.ctx);
   }
-  check_flag(CVodeSetLinearSolver(h.mem, h.LS, h.A), "CVodeSetLinearSolver");
-  if (options_.jacobian == JacobianKind::AutoDiff)
-    check_flag(CVodeSetJacFn(h.mem, band ? jac_band_cb : jac_dense_cb), "CVodeSetJacFn");
+  if (!adams) check_flag(CVodeSetLinearSolver(h.mem, h.LS, h.A), "CVodeSetLinearSolver");
+  if (!adams && options_.jacobian == JacobianKind::AutoDiff)
+    check_flag(CVodeSetJacFn(h.mem, klu ? jac_sparse_cb : band ? jac_band_cb : jac_dense_cb), "CVodeSetJacFn");
 
   if (ns > 0) {
     h.ns = static_cast<int>(ns);
     h.yS = N_VCloneVectorArray(h.ns, h.y);
-    for (int j = 0; j < h.ns; ++j) N_VConst(0.0, h.yS[j]);  // initial state independent of p
+    // s(0) = dy0/dp: initial states are algebraic (at most linear) functions of the
+    // parameters (e.g. initial joint angles), so a central difference is exact.
+    for (int j = 0; j < h.ns; ++j) {
+      size_t k = sens_params[j];
+      double hstep = 1e-6 * std::max(1.0, std::abs(p[k]));
+      std::vector<double> pp = p, pm = p;
+      pp[k] += hstep;
+      pm[k] -= hstep;
+      std::vector<double> yp = model_.initial_state(pp), ym = model_.initial_state(pm);
+      for (size_t i = 0; i < n; ++i) NV_Ith_S(h.yS[j], i) = (yp[i] - ym[i]) / (2 * hstep);
+    }
     int method = options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS;
     check_flag(CVodeSensInit1(h.mem, h.ns, method, sens_rhs_cb, h.yS), "CVodeSensInit1");
+    if (adams) {
+      h.NLS_sens = method == CV_STAGGERED ? SUNNonlinSol_FixedPointSens(h.ns + 1, h.y, 0, h.ctx)
+                                          : SUNNonlinSol_FixedPointSens(h.ns + 1, h.y, 0, h.ctx);
+      if (method == CV_STAGGERED) check_flag(CVodeSetNonlinearSolverSensStg(h.mem, h.NLS_sens), "CVodeSetNonlinearSolverSensStg");
+      else check_flag(CVodeSetNonlinearSolverSensSim(h.mem, h.NLS_sens), "CVodeSetNonlinearSolverSensSim");
+    }
     std::vector<double> pbar(ns);
     for (size_t j = 0; j < ns; ++j) pbar[j] = std::abs(p[sens_params[j]]) > 0 ? std::abs(p[sens_params[j]]) : 1.0;
     check_flag(CVodeSetSensParams(h.mem, nullptr, pbar.data(), nullptr), "CVodeSetSensParams");
@@ -234,6 +312,35 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
                breaks.end());
   breaks.push_back(t_end);
   size_t next_break = 0;
+  // dtau_k/dp_j of each breakpoint: switch times are algebraic functions of the parameters
+  // (command times, switching periods), so central differences are exact; matched by value.
+  std::vector<std::vector<double>> dtau(breaks.size(), std::vector<double>(ns, 0.0));
+  for (size_t j = 0; j < ns; ++j) {
+    size_t k = sens_params[j];
+    double hstep = 1e-6 * std::max(1.0, std::abs(p[k]));
+    std::vector<double> pp = p, pm = p;
+    pp[k] += hstep;
+    pm[k] -= hstep;
+    std::vector<double> bp = model_.breakpoints(pp, t_end), bm = model_.breakpoints(pm, t_end);
+    std::sort(bp.begin(), bp.end());
+    std::sort(bm.begin(), bm.end());
+    auto nearest = [](const std::vector<double>& v, double x) {
+      double best = NAN;
+      for (double b : v)
+        if (std::isnan(best) || std::abs(b - x) < std::abs(best - x)) best = b;
+      return best;
+    };
+    for (size_t b = 0; b + 1 < breaks.size(); ++b) {
+      // The perturbed switch nearest to the nominal one is the same switch as long as it
+      // moved by less than a quarter of the gap to the neighbouring switches.
+      double gap = breaks[b + 1] - breaks[b];
+      if (b > 0) gap = std::min(gap, breaks[b] - breaks[b - 1]);
+      double up = nearest(bp, breaks[b]), dn = nearest(bm, breaks[b]);
+      if (std::abs(up - breaks[b]) > 0.25 * gap || std::abs(dn - breaks[b]) > 0.25 * gap) continue;
+      dtau[b][j] = (up - dn) / (2 * hstep);
+    }
+  }
+  std::vector<double> f_before(n), f_after(n);
   check_flag(CVodeSetStopTime(h.mem, breaks[0]), "CVodeSetStopTime");
 
   SolveResult res;
@@ -244,8 +351,15 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   auto last_print = std::chrono::steady_clock::now();
   std::vector<double> ydot(n);
 
+  long steps_before_restarts = 0;  // CVodeReInit resets the step counter
+  auto total_steps = [&] {
+    long v = 0;
+    CVodeGetNumSteps(h.mem, &v);
+    return steps_before_restarts + v;
+  };
   auto record_output = [&](double t) {
     res.t.push_back(t);
+    res.steps_at_output.push_back(total_steps());
     for (size_t i = 0; i < n; ++i) res.y.push_back(NV_Ith_S(h.y, i));
     if (ns) {
       for (size_t i = 0; i < n; ++i)
@@ -293,7 +407,19 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
       // The right-hand side changes here: restart the integrator from the current state.
       // Sensitivities are continuous across such fixed-time switches (the switch time does
       // not depend on the parameters), so they are carried over unchanged.
+      steps_before_restarts = total_steps();
       check_flag(CVodeReInit(h.mem, t, h.y), "CVodeReInit");
+      if (ns) {
+        // The state is continuous; if the switch time moves with p_j the sensitivity jumps:
+        // s(tau+) = s(tau-) + (f(tau-) - f(tau+)) dtau/dp_j.
+        const double* yv = N_VGetArrayPointer(h.y);
+        const double delta = 1e-9 * std::max(1.0, std::abs(t));  // one-sided limits at the switch
+        model_.rhs(t - delta, yv, p.data(), f_before.data());
+        model_.rhs(t + delta, yv, p.data(), f_after.data());
+        for (size_t j = 0; j < ns; ++j)
+          if (dtau[next_break][j] != 0.0)
+            for (size_t i = 0; i < n; ++i) NV_Ith_S(h.yS[j], i) += (f_before[i] - f_after[i]) * dtau[next_break][j];
+      }
       if (ns) check_flag(CVodeSensReInit(h.mem, options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS, h.yS), "CVodeSensReInit");
       ++next_break;
       check_flag(CVodeSetStopTime(h.mem, breaks[next_break]), "CVodeSetStopTime");
@@ -315,8 +441,7 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   if (show_progress) std::fprintf(stderr, "\r%s: t = %.0f / %.0f ms (100%%)\n", options_.progress_label.c_str(), t_end, t_end);
 
   long v = 0;
-  CVodeGetNumSteps(h.mem, &v);
-  res.stats.steps = v;
+  res.stats.steps = total_steps();
   CVodeGetNumRhsEvals(h.mem, &v);
   res.stats.rhs_evals = v;
   CVodeGetNumJacEvals(h.mem, &v);

@@ -9,16 +9,23 @@
 
 namespace phasmid::solver {
 
-enum class LinearSolverKind { Dense, Band, Klu };
+// Auto: dense up to kDenseMaxStates states, KLU (sparse) above: measured 71.7 s (dense) vs
+// 20.7 s (KLU) for 9 s of one leg (78 states); equal step counts (docs/benchmarks.md).
+enum class LinearSolverKind { Auto, Dense, Band, Klu };
+constexpr size_t kDenseMaxStates = 40;
 enum class JacobianKind { AutoDiff, FiniteDifference };
 enum class SensitivityMethod { Staggered, Simultaneous };
+// BDF + Newton (stiff) or Adams-Moulton + fixed-point iteration (non-stiff: no Jacobian, no
+// linear solves). Chosen by measurement per model (docs/benchmarks.md).
+enum class IntegratorKind { Bdf, Adams };
 
 struct SolverOptions {
   double rtol = 1e-8;
   double atol = 1e-8;
   long max_steps = 1000000;          // per output interval
   double max_step_ms = 0.0;          // 0: no limit
-  LinearSolverKind linear_solver = LinearSolverKind::Dense;
+  IntegratorKind integrator = IntegratorKind::Bdf;
+  LinearSolverKind linear_solver = LinearSolverKind::Auto;
   JacobianKind jacobian = JacobianKind::AutoDiff;
   SensitivityMethod sensitivity_method = SensitivityMethod::Staggered;
   bool sensitivity_error_control = true;
@@ -54,6 +61,7 @@ struct SolveResult {
   std::vector<double> s;    // n_out x n_states x n_sens, row-major (empty without sensitivities)
   std::vector<size_t> sens_params;
   std::vector<Event> events;
+  std::vector<long> steps_at_output;  // cumulative solver steps at each output time (diagnostics)
   SolverStats stats;
   size_t n_states = 0;
   double state(size_t k, size_t i) const { return y[k * n_states + i]; }

@@ -54,6 +54,37 @@ class WarpedOscillator : public model::OdeModelT<WarpedOscillator> {
   size_t iw_, ie_, ia_, ic_;
 };
 
+// Two joints: theta1 = c - A cos(Omega t) and theta2 = theta1 through a first-order low-pass
+// (time constant tau), whose steady state lags by atan(Omega tau) / (2 pi) cycles.
+class LowPassPair : public model::OdeModelT<LowPassPair> {
+ public:
+  LowPassPair(double omega, double tau) {
+    iw_ = params_.add({"test.omega", omega, "rad/ms", "test", "angular frequency"});
+    it_ = params_.add({"test.tau", tau, "ms", "test", "low-pass time constant"});
+    ia_ = params_.add({"test.A", 0.5, "rad", "test", "amplitude"});
+    ic_ = params_.add({"test.c", 1.4, "rad", "test", "centre"});
+    add_state("test.phi", "rad");
+    angles_.push_back({"middle", "fti", add_state("middle.fti.gamma", "rad"), add_state("middle.fti.gamma_dot", "rad/ms")});
+    angles_.push_back({"middle", "ctr", add_state("middle.ctr.beta", "rad"), add_state("middle.ctr.beta_dot", "rad/ms")});
+  }
+  std::string kind() const override { return "test"; }
+  std::vector<double> initial_state(const std::vector<double>& p) const override {
+    return {0.0, p[ic_] - p[ia_], 0.0, p[ic_] - p[ia_], 0.0};
+  }
+  template <class T>
+  void eval(double, const T* y, const T* p, T* ydot) const {
+    using std::cos;
+    ydot[0] = p[iw_];
+    ydot[1] = y[2];
+    ydot[2] = p[ia_] * p[iw_] * p[iw_] * cos(y[0]);
+    ydot[3] = y[4];
+    ydot[4] = (y[2] - y[4]) / p[it_];
+  }
+
+ private:
+  size_t iw_, it_, ia_, ic_;
+};
+
 double find(const std::vector<features::Feature>& fs, const std::string& name) {
   for (auto& f : fs)
     if (f.name == name) return f.value;
@@ -231,5 +262,44 @@ TEST(FeaturesVerb, PrintsTableAndJsonFromH5) {
   }
   rc = std::system((std::string(PHASMID_BINARY) + " features " + (dir / "junk.h5").string() + " 2> " + err).c_str());
   EXPECT_NE(rc, 0);
+  auto stderr_of = [&](const std::string& file) {
+    int code = std::system((std::string(PHASMID_BINARY) + " features " + file + " 2> " + err).c_str());
+    EXPECT_NE(code, 0) << file;
+    std::stringstream ss;
+    ss << std::ifstream(err).rdbuf();
+    return ss.str();
+  };
+  {
+    io::H5Writer w((dir / "foreign.h5").string());  // HDF5, but not written by phasmid
+    w.write_scalar("/x", 1.0, "1");
+    w.commit();
+  }
+  EXPECT_NE(stderr_of((dir / "foreign.h5").string()).find("not a phasmid file"), std::string::npos);
+  {
+    io::H5Writer w((dir / "nofeatures.h5").string());
+    w.write_run_info({"", "test"});
+    w.commit();
+  }
+  EXPECT_NE(stderr_of((dir / "nofeatures.h5").string()).find("no /features"), std::string::npos);
   fs::remove_all(dir);
+}
+
+TEST(Features, PhaseLagOfALowPassFilteredJointMatchesAnalyticValue) {
+  const double omega = 2 * M_PI / 400.0, tau = 20.0;
+  LowPassPair m(omega, tau);
+  solver::SolverOptions so;
+  so.rtol = so.atol = 1e-11;
+  auto p = m.parameters().values();
+  auto r = solver::Simulator(m, so).run(p, solver::output_grid(4000, 10), features::feature_roots(m), {0, 1});
+  features::FeatureOptions fo;
+  fo.discard_ms = 1200;  // the filter's transient decays like exp(-t / 20 ms)
+  auto fs = features::compute_features(m, r, fo);
+  const double x = omega * tau, lag = std::atan(x) / (2 * M_PI);
+  EXPECT_NEAR(find(fs, "middle.ctr.phase_lag"), lag, 1e-7);
+  EXPECT_NEAR(find(fs, "middle.ctr.period_ms"), 400.0, 1e-6);
+  for (auto& g : features::compute_feature_gradients(m, r, fo)) {
+    if (g.feature.name != "middle.ctr.phase_lag") continue;
+    EXPECT_NEAR(g.gradient[0], tau / (1 + x * x) / (2 * M_PI), 1e-5 * tau / (2 * M_PI));  // d lag / d omega
+    EXPECT_NEAR(g.gradient[1], omega / (1 + x * x) / (2 * M_PI), 1e-5 * omega / (2 * M_PI));  // d lag / d tau
+  }
 }

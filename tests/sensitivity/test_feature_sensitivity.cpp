@@ -126,28 +126,81 @@ INSTANTIATE_TEST_SUITE_P(Joints, MechanicalSensitivity,
                                            Case{"thc", model::JointType::Thc, 125, 70}),
                          [](const ::testing::TestParamInfo<Case>& i) { return std::string(i.param.name); });
 
-TEST(Sensitivity, SwitchTimingParametersFallBackToFiniteDifferencesAndFollowTheForcing) {
-  // The prescribed switch times move with switch.period_ms: forward sensitivities without
-  // jump conditions would be wrong, so these columns are computed by finite differences.
-  // After the transient the gait period equals the forcing period: d period / d period_ms = 1.
+TEST(Sensitivity, SwitchTimingSensitivitiesWithJumpConditionsMatchCentralDifferences) {
+  // The prescribed switch times move with switch.period_ms and switch.first_phase_ms: the
+  // forward method applies s+ = s- + (f- - f+) dtau/dp at every switch.
   model::MechanicalJointModel m("middle", model::JointType::Fti, true, 250, 500, 45);
   auto o = options_for(m, sensitivity::Method::Forward);
   o.parameters = {"middle.fti.b_v", "middle.fti.switch.period_ms", "middle.fti.switch.first_phase_ms",
                   "middle.fti.gamma0"};
-  o.t_end_ms = 3000;
-  o.discard_ms = 1000;
-  auto r = sensitivity::analyse_sensitivities(m, m.parameters().values(), o);
-  EXPECT_EQ(r.parameter_method, (std::vector<std::string>{"forward", "fd", "fd", "fd"}));
-  size_t f = r.feature_index("period_ms");
-  EXPECT_NEAR(r.absolute(f, 1), 1.0, 1e-4);
-  EXPECT_NEAR(r.relative(f, 1), 1.0, 1e-4);
-  // Moving the flexion/extension switch within the period shifts the maximum by as much:
-  // d flexion_ms / d first_phase_ms ~ 1 and d extension_ms / d first_phase_ms ~ -1 are not
-  // exact (the overshoot dynamics differ), but the two must add up to 0 (period fixed).
-  size_t fl = r.feature_index("middle.fti.flexion_ms"), ex = r.feature_index("middle.fti.extension_ms");
-  EXPECT_NEAR(r.absolute(fl, 2) + r.absolute(ex, 2), 0.0, 1e-4);
-  // The initial angle is forgotten after the transient (damped, forced): tiny effect on the cycle.
-  EXPECT_LT(std::abs(r.relative(r.feature_index("middle.fti.angle_max_deg"), 3)), 1e-4);
+  o.t_end_ms = 2000;
+  o.output_dt_ms = 7;
+  o.discard_ms = 500;
+  auto p = m.parameters().values();
+  auto fwd = sensitivity::analyse_sensitivities(m, p, o);
+  EXPECT_EQ(fwd.parameter_method, (std::vector<std::string>{"forward", "forward", "forward", "forward"}));
+  // After the transient the gait period equals the forcing period: d period / d period_ms = 1.
+  size_t f = fwd.feature_index("period_ms");
+  EXPECT_NEAR(fwd.absolute(f, 1), 1.0, 1e-6);
+  EXPECT_NEAR(fwd.absolute(f, 2), 0.0, 1e-6);
+  o.method = sensitivity::Method::FiniteDifference;
+  auto fd = sensitivity::analyse_sensitivities(m, p, o);
+  for (size_t g = 0; g < fwd.features.size(); ++g)
+    for (size_t j = 0; j < fwd.parameters.size(); ++j) {
+      if (std::abs(fd.relative(g, j)) >= 1e-3)
+        EXPECT_NEAR(fwd.absolute(g, j), fd.absolute(g, j), 0.01 * std::abs(fd.absolute(g, j)))
+            << "d " << fwd.features[g].name << " / d " << fwd.parameters[j];
+      else
+        EXPECT_NEAR(fwd.relative(g, j), fd.relative(g, j), 1e-5) << "d " << fwd.features[g].name << " / d " << fwd.parameters[j];
+    }
+  const size_t nt = fwd.time.size();
+  int compared = 0;
+  for (size_t i = 0; i < 2; ++i)
+    for (size_t j = 0; j < fwd.parameters.size(); ++j) {
+      double scale = 0;
+      for (size_t k = 0; k < nt; ++k) scale = std::max(scale, std::abs(fd.trajectory_sens(k, i, j)));
+      for (size_t k = 0; k < nt; ++k) {
+        // At a switch time itself (multiples of 250 ms: 1750, 2000) y(t) has a kink as a
+        // function of the switch parameters, so neither one-sided derivative equals the
+        // central difference there; compare everywhere else.
+        if (std::abs(std::remainder(fwd.time[k], 250.0)) < 1e-9) continue;
+        const double a = fwd.trajectory_sens(k, i, j), b = fd.trajectory_sens(k, i, j);
+        EXPECT_NEAR(a, b, 0.01 * std::abs(b) + 1e-4 * scale)
+            << "t=" << fwd.time[k] << " d " << fwd.state_names[i] << " / d " << fwd.parameters[j];
+        ++compared;
+      }
+    }
+  EXPECT_GT(compared, 1000);
+}
+
+TEST(Sensitivity, InitialAngleSensitivityIsExactFromTheStart) {
+  // gamma0 sets the initial state: forward sensitivities start from s(0) = dy0/dp.
+  model::MechanicalJointModel m("middle", model::JointType::Fti, true, 250, 500, 45);
+  auto o = options_for(m, sensitivity::Method::Forward);
+  o.parameters = {"middle.fti.gamma0", "middle.fti.b_v"};
+  o.t_end_ms = 1500;
+  o.discard_ms = 0;
+  auto p = m.parameters().values();
+  auto fwd = sensitivity::analyse_sensitivities(m, p, o);
+  EXPECT_EQ(fwd.parameter_method, (std::vector<std::string>{"forward", "forward"}));
+  // d gamma(0) / d gamma0 = pi/180 rad/deg; dy0/dp comes from central differences of the
+  // algebraic initial state (round-off ~1e-10 relative).
+  EXPECT_NEAR(fwd.trajectory_sens(0, 0, 0), M_PI / 180, 1e-9 * M_PI / 180);
+  o.method = sensitivity::Method::FiniteDifference;
+  auto fd = sensitivity::analyse_sensitivities(m, p, o);
+  const size_t nt = fwd.time.size();
+  for (size_t i = 0; i < 2; ++i) {
+    double scale = 0;
+    for (size_t k = 0; k < nt; ++k) scale = std::max(scale, std::abs(fd.trajectory_sens(k, i, 0)));
+    ASSERT_GT(scale, 0);
+    for (size_t k = 0; k < nt; k += 5)
+      EXPECT_NEAR(fwd.trajectory_sens(k, i, 0), fd.trajectory_sens(k, i, 0), 0.01 * std::abs(fd.trajectory_sens(k, i, 0)) + 1e-4 * scale)
+          << "t=" << fwd.time[k] << " state " << i;
+  }
+  // The first maximum (134 ms) depends on the initial angle; the features average it in.
+  size_t f = fwd.feature_index("middle.fti.angle_max_deg");
+  EXPECT_GT(std::abs(fd.relative(f, 0)), 1e-4);
+  EXPECT_NEAR(fwd.absolute(f, 0), fd.absolute(f, 0), 0.01 * std::abs(fd.absolute(f, 0)));
 }
 
 TEST(Sensitivity, RelativeSensitivitiesAndRankingAreConsistent) {

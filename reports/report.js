@@ -1,0 +1,629 @@
+// phasmid report: draws the figures for whatever groups the HDF5 file had (see docs/reports.md).
+// Data come from the inlined JSON written by src/report/report.cpp. When done, <body> carries
+// data-status="ok"|"error", data-figures="<ids of the figures and tables drawn>", data-errors.
+(function () {
+  'use strict';
+  var errors = window.__phasmidErrors || [];
+  var rendered = [];
+  var DATA = JSON.parse(document.getElementById('phasmid-data').textContent);
+  var main = document.getElementById('report');
+  var toc = document.getElementById('toc');
+
+  Chart.defaults.animation = false;
+  Chart.defaults.responsive = true;
+  Chart.defaults.maintainAspectRatio = false;
+  Chart.defaults.font.size = 12;
+  Chart.defaults.plugins.title.font = { size: 14, weight: 'bold' };
+  Chart.defaults.color = '#1d2330';
+  // Linear-axis ticks: plain numbers, exponents only for very small or large magnitudes.
+  Chart.defaults.scales.linear.ticks.callback = function (v) {
+    var a = Math.abs(v);
+    if (a !== 0 && (a < 1e-3 || a >= 1e6)) return v.toExponential(1);
+    return String(Number(v.toPrecision(6)));
+  };
+
+  var PALETTE = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#17becf', '#bcbd22', '#7f7f7f'];
+  var GAIT_COLORS = { tripod: '#1f77b4', tetrapod: '#2ca02c', wave: '#9467bd', irregular: '#ff7f0e', failed: '#9e9e9e' };
+
+  // ------------------------------------------------------------------ helpers
+  function el(tag, attrs, children) {
+    var e = document.createElement(tag);
+    if (attrs) Object.keys(attrs).forEach(function (k) {
+      if (k === 'text') e.textContent = attrs[k];
+      else if (k === 'cls') e.className = attrs[k];
+      else e.setAttribute(k, attrs[k]);
+    });
+    (children || []).forEach(function (c) { if (c) e.appendChild(typeof c === 'string' ? document.createTextNode(c) : c); });
+    return e;
+  }
+  function safeId(s) { return String(s).replace(/[^A-Za-z0-9_.-]/g, '_'); }
+  function withUnits(name, units) { return units && units !== '1' ? name + ' (' + units + ')' : (units === '1' ? name + ' (1)' : name); }
+  function fmt(v) {
+    if (v === null || v === undefined || (typeof v === 'number' && !isFinite(v))) return '—';
+    if (typeof v !== 'number') return String(v);
+    var a = Math.abs(v);
+    if (a !== 0 && (a < 1e-3 || a >= 1e5)) return v.toExponential(3);
+    return String(Number(v.toPrecision(5)));
+  }
+  function axis(title, extra) {
+    var a = { title: { display: true, text: title } };
+    if (extra) Object.keys(extra).forEach(function (k) { a[k] = extra[k]; });
+    return a;
+  }
+  function section(id, title, intro) {
+    var s = el('section', { id: id }, [el('h2', { text: title })]);
+    if (intro) s.appendChild(el('p', { cls: 'intro', text: intro }));
+    main.appendChild(s);
+    toc.appendChild(el('a', { href: '#' + id, text: title }));
+    return s;
+  }
+  // A <figure> with a canvas; returns {fig, canvas}.
+  function figure(parent, id, caption, height) {
+    var canvas = el('canvas', { 'aria-label': caption, role: 'img' });
+    var box = el('div', { cls: 'chart-box', style: 'height:' + (height || 320) + 'px' }, [canvas]);
+    var fig = el('figure', { cls: 'fig', id: id }, [box, el('figcaption', { text: caption })]);
+    parent.appendChild(fig);
+    return { fig: fig, canvas: canvas };
+  }
+  function draw(id, f, config) {
+    try {
+      new Chart(f.canvas, config);
+      rendered.push(id);
+    } catch (e) {
+      console.error('figure ' + id + ' failed: ' + (e && e.stack || e));
+    }
+  }
+  function titleOpt(text) { return { display: true, text: text }; }
+  function table(parent, id, caption, headers, rows, numeric) {
+    var t = el('table', { cls: 'tbl', id: id }, [el('caption', { text: caption })]);
+    if (rows.length > 25) { var wrap = el('div', { cls: 'scroll' }); parent.appendChild(wrap); parent = wrap; }
+    t.appendChild(el('thead', null, [el('tr', null, headers.map(function (h) { return el('th', { text: h }); }))]));
+    var tb = el('tbody');
+    rows.forEach(function (r) {
+      tb.appendChild(el('tr', null, r.map(function (c, i) {
+        return el('td', { text: typeof c === 'number' || c === null ? fmt(c) : String(c), cls: numeric && numeric[i] ? 'num' : '' });
+      })));
+    });
+    t.appendChild(tb);
+    parent.appendChild(t);
+    rendered.push(id);
+    return t;
+  }
+  function xy(t, y) {
+    var out = new Array(y.length);
+    for (var i = 0; i < y.length; i++) out[i] = { x: t[i], y: y[i] };
+    return out;
+  }
+  function lineDataset(label, data, i, extra) {
+    var d = { label: label, data: data, borderColor: PALETTE[i % PALETTE.length], backgroundColor: PALETTE[i % PALETTE.length],
+      borderWidth: 1.3, pointRadius: 0, tension: 0, spanGaps: false, parsing: false, normalized: true };
+    if (extra) Object.keys(extra).forEach(function (k) { d[k] = extra[k]; });
+    return d;
+  }
+  function allPositive(a) { return a.length > 0 && a.every(function (v) { return v !== null && v > 0; }); }
+
+  // Colour maps: viridis (sequential) and a blue-white-red (diverging) ramp.
+  var VIRIDIS = [[68, 1, 84], [72, 40, 120], [62, 74, 137], [49, 104, 142], [38, 130, 142], [31, 158, 137], [53, 183, 121], [109, 205, 89], [180, 222, 44], [253, 231, 37]];
+  var RDBU = [[33, 102, 172], [103, 169, 207], [209, 229, 240], [247, 247, 247], [253, 219, 199], [239, 138, 98], [178, 24, 43]];
+  function ramp(stops, f) {
+    f = Math.max(0, Math.min(1, f));
+    var x = f * (stops.length - 1), i = Math.min(Math.floor(x), stops.length - 2), r = x - i;
+    var c = [0, 1, 2].map(function (k) { return Math.round(stops[i][k] + r * (stops[i + 1][k] - stops[i][k])); });
+    return 'rgb(' + c.join(',') + ')';
+  }
+  function gradientCss(stops) {
+    return 'linear-gradient(to right,' + stops.map(function (s) { return 'rgb(' + s.join(',') + ')'; }).join(',') + ')';
+  }
+  function colorbar(fig, stops, lo, hi, label) {
+    fig.insertBefore(el('div', { cls: 'colorbar' }, [
+      el('span', { text: fmt(lo) }), el('span', { cls: 'ramp', style: 'background:' + gradientCss(stops) }),
+      el('span', { text: fmt(hi) }), el('span', { text: label })]), fig.querySelector('figcaption'));
+  }
+  function legend(fig, entries) {
+    fig.insertBefore(el('div', { cls: 'legend' }, entries.map(function (e) {
+      return el('span', null, [el('span', { cls: 'swatch', style: 'background:' + e[1] }), e[0]]);
+    })), fig.querySelector('figcaption'));
+  }
+  function finiteRange(values) {
+    var lo = Infinity, hi = -Infinity;
+    values.forEach(function (v) { if (v !== null && isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); } });
+    if (lo === Infinity) return [0, 1];
+    if (lo === hi) { lo -= 0.5; hi += 0.5; }
+    return [lo, hi];
+  }
+  // Matrix (heat map) chart over category axes. cells: [{x, y, v, color, note}]
+  // ysUpwards: ys are numbers in ascending order, drawn bottom to top; otherwise ys[0] is the top row.
+  function heatmap(id, f, title, xs, ys, cells, xTitle, yTitle, valueLabel, ysUpwards) {
+    var nx = xs.length, ny = ys.length;
+    draw(id, f, {
+      type: 'matrix',
+      data: { datasets: [{
+        label: valueLabel, data: cells,
+        backgroundColor: function (c) { var d = c.dataset.data[c.dataIndex]; return d ? d.color : '#fff'; },
+        borderColor: 'rgba(255,255,255,0.9)', borderWidth: 1,
+        width: function (c) { var a = c.chart.chartArea; return a ? a.width / nx - 1 : 10; },
+        height: function (c) { var a = c.chart.chartArea; return a ? a.height / ny - 1 : 10; }
+      }] },
+      options: {
+        plugins: {
+          title: titleOpt(title), legend: { display: false },
+          tooltip: { callbacks: {
+            title: function () { return ''; },
+            label: function (c) { var d = c.raw; return [xTitle + ' = ' + d.x, yTitle + ' = ' + d.y, valueLabel + ': ' + (d.note || fmt(d.v))]; }
+          } }
+        },
+        scales: {
+          x: axis(xTitle, { type: 'category', labels: xs, offset: true, grid: { display: false }, ticks: { autoSkip: true, maxRotation: 60 } }),
+          y: axis(yTitle, { type: 'category', labels: ysUpwards ? ys : ys.slice().reverse(), offset: true, grid: { display: false } })
+        }
+      }
+    });
+  }
+
+  // ------------------------------------------------------------------ header
+  function header() {
+    var a = DATA.attrs || {};
+    var meta = document.getElementById('meta');
+    var dl = el('dl');
+    [['file', DATA.source], ['phasmid version', a.phasmid_version], ['created', a.created], ['command', a.command]].forEach(function (kv) {
+      if (kv[1]) { dl.appendChild(el('dt', { text: kv[0] })); dl.appendChild(el('dd', { text: kv[1] })); }
+    });
+    meta.appendChild(dl);
+    if (a.config) meta.appendChild(el('details', null, [el('summary', { text: 'Resolved configuration' }), el('pre', { text: a.config })]));
+  }
+
+  // ------------------------------------------------------------------ trajectory
+  function seriesXY(tr, s) { return xy(s.t || tr.time, s.y); }
+  function timeAxis(tr) { return axis(withUnits('time', tr.time_units || 'ms'), { type: 'linear', min: tr.t_range[0], max: tr.t_range[1], ticks: { includeBounds: false } }); }
+
+  function phaseChart(sec, id, tr, rows, title, caption, barLabel) {
+    var legs = rows.map(function (r) { return r.leg; });
+    var data = [];
+    rows.forEach(function (r) { r.intervals.forEach(function (iv) { data.push({ x: [iv[0], iv[1]], y: r.leg }); }); });
+    var f = figure(sec, id, caption, 70 + 34 * legs.length);
+    draw(id, f, {
+      type: 'bar',
+      data: { labels: legs, datasets: [{ label: barLabel, data: data, backgroundColor: '#222', borderWidth: 0, barPercentage: 0.7, categoryPercentage: 1.0, grouped: false }] },
+      options: {
+        indexAxis: 'y',
+        plugins: { title: titleOpt(title), legend: { display: true } },
+        scales: { x: timeAxis(tr), y: axis('leg', { type: 'category', labels: legs }) }
+      }
+    });
+  }
+
+  function trajectory(tr) {
+    var sec = section('trajectory', 'Trajectory',
+      'Simulated time course' + (tr.decimated ? ' (long series reduced to at most ' + DATA.max_points + ' points each by min/max decimation, so peaks are kept).' : '.'));
+    if (tr.footfall && tr.footfall.length)
+      phaseChart(sec, 'fig-footfall', tr, tr.footfall, 'Footfall diagram (black bars: swing phase)',
+        'Footfall diagram: black bars mark swing (footfall = 1), gaps mark stance, for each leg over time.', 'swing');
+    var angleGrid = el('div', { cls: 'grid2' }), voltGrid = el('div', { cls: 'grid2' });
+    sec.appendChild(angleGrid);
+    sec.appendChild(voltGrid);
+    // Joint angles, one figure per leg.
+    [['angles', 'fig-angles-', 'Joint angles', 'joint angle', 'deg'], ['angular_velocity', 'fig-angvel-', 'Joint angular velocities', 'angular velocity', 'deg/s']].forEach(function (kind) {
+      var byLeg = {};
+      var legOrder = [];
+      (tr[kind[0]] || []).forEach(function (s) { if (!byLeg[s.leg]) { byLeg[s.leg] = []; legOrder.push(s.leg); } byLeg[s.leg].push(s); });
+      legOrder.forEach(function (leg) {
+        var list = byLeg[leg];
+        var id = kind[1] + safeId(leg);
+        var units = list[0].units || kind[4];
+        var f = figure(angleGrid, id, kind[2] + ' of the ' + leg + ' leg: ' + list.map(function (s) { return s.joint; }).join(', ') + ' in ' + units + '.', 300);
+        draw(id, f, {
+          type: 'line',
+          data: { datasets: list.map(function (s, i) { return lineDataset(s.joint + ' (' + (s.units || units) + ')', seriesXY(tr, s), i); }) },
+          options: { plugins: { title: titleOpt(kind[2] + ', ' + leg + ' leg') }, scales: { x: timeAxis(tr), y: axis(withUnits(kind[3], units)) } }
+        });
+      });
+    });
+    // Membrane potentials grouped by leg.joint: CPG (C) and motor-neuron (MN) units, then other neurons.
+    var LEGS = ['front', 'middle', 'hind', 'L1', 'L2', 'L3', 'R1', 'R2', 'R3'], JOINTS = ['thc', 'ctr', 'fti'];
+    function rank(list, v) { var i = list.indexOf(v); return i < 0 ? list.length : i; }
+    [['cpg_mn', 'fig-voltage-', 'CPG and motor-neuron potentials', 'Membrane potentials of the CPG (C) and motor-neuron (MN) units of '],
+     ['other', 'fig-voltage-other-', 'Other neuron potentials', 'Membrane potentials of the other neurons (interneurons, sensory units, ...) of ']].forEach(function (kind) {
+      var groups = {}, gorder = [];
+      tr.voltages.forEach(function (s) {
+        if ((s.kind || 'cpg_mn') !== kind[0]) return;
+        var parts = s.name.split('.');
+        var g = parts.length > 3 ? parts.slice(0, 2).join('.') : (parts.length > 2 ? parts[0] : 'network');
+        if (!groups[g]) { groups[g] = []; gorder.push(g); }
+        groups[g].push(s);
+      });
+      gorder.sort(function (a, b) {
+        var pa = a.split('.'), pb = b.split('.');
+        return (rank(LEGS, pa[0]) - rank(LEGS, pb[0])) || (rank(JOINTS, pa[1]) - rank(JOINTS, pb[1])) || (a < b ? -1 : a > b ? 1 : 0);
+      });
+      gorder.forEach(function (g) {
+        var list = groups[g];
+        var id = kind[1] + safeId(g);
+        var units = list[0].units || 'mV';
+        var f = figure(voltGrid, id, kind[3] + g + ', in ' + units + '.', 300);
+        draw(id, f, {
+          type: 'line',
+          data: { datasets: list.map(function (s, i) {
+            var short = s.name.indexOf(g + '.') === 0 ? s.name.slice(g.length + 1) : s.name;
+            return lineDataset(short, seriesXY(tr, s), i);
+          }) },
+          options: { plugins: { title: titleOpt(kind[2] + ', ' + g) }, scales: { x: timeAxis(tr), y: axis(withUnits('membrane potential', units)) } }
+        });
+      });
+    });
+    if (tr.position && tr.position.length) {
+      var id = 'fig-position';
+      var units = tr.position[0].units;
+      var f = figure(sec, id, 'Leg (tarsus) positions of the Cruse-model legs over time' + (units ? ', in ' + units : '') + '.', 320);
+      draw(id, f, {
+        type: 'line',
+        data: { datasets: tr.position.map(function (s, i) { return lineDataset(s.leg + (s.component ? ' ' + s.component : ''), seriesXY(tr, s), i); }) },
+        options: { plugins: { title: titleOpt('Leg positions') }, scales: { x: timeAxis(tr), y: axis(withUnits('position', units)) } }
+      });
+    }
+    if (tr.protraction && tr.protraction.length)
+      phaseChart(sec, 'fig-protraction', tr, tr.protraction, 'Protraction diagram (black bars: protraction / swing)',
+        'Protraction phases of each leg of the Cruse model (1 = protraction), drawn like a footfall diagram.', 'protraction');
+    if (rendered.filter(function (r) { return r.indexOf('fig-') === 0; }).length === 0)
+      sec.appendChild(el('p', { cls: 'empty', text: 'No joint angles, potentials or footfall data in this trajectory.' }));
+    if (tr.other_states && tr.other_states.length) {
+      sec.appendChild(el('details', null, [el('summary', { text: tr.other_states.length + ' other state variables in the file (not plotted)' }),
+        el('p', { text: tr.other_states.map(function (s) { return withUnits(s.name, s.units); }).join(', ') })]));
+    }
+  }
+
+  // ------------------------------------------------------------------ tables
+  function parameters(rows) {
+    var sec = section('parameters', 'Parameters', 'The resolved parameter vector of the run.');
+    table(sec, 'table-parameters', 'Parameters (' + rows.length + ')', ['parameter', 'value', 'unit'],
+      rows.map(function (r) { return [r.name, r.value, r.units || '']; }), [false, true, false]);
+  }
+  function features(rows) {
+    var sec = section('features', 'Features', 'Scalar features of the run (period, phase durations, extremal angles, ...).');
+    if (!rows.length) { sec.appendChild(el('p', { cls: 'empty', text: 'No features.' })); return; }
+    table(sec, 'table-features', 'Features (' + rows.length + ')', ['feature', 'value', 'unit'],
+      rows.map(function (r) { return [r.name, Array.isArray(r.value) ? r.value.map(fmt).join(', ') : r.value, r.units || '']; }), [false, true, false]);
+  }
+
+  // ------------------------------------------------------------------ sensitivity
+  function sensitivity(s) {
+    var sec = section('sensitivity', 'Sensitivity',
+      'Sensitivities of the features to the parameters. Relative sensitivities (∂ln feature / ∂ln parameter) are comparable across features and parameters; raw ones are in feature units per parameter unit.');
+    var params = s.parameters || [];
+    var rel = {};
+    (s.relative || []).forEach(function (r) { rel[r.name] = r; });
+    var raw = {};
+    (s.features || []).forEach(function (r) { raw[r.name] = r; });
+    var names = [];
+    (s.relative || []).concat(s.features || []).forEach(function (r) { if (names.indexOf(r.name) < 0) names.push(r.name); });
+    if (!params.length || !names.length) { sec.appendChild(el('p', { cls: 'empty', text: 'No sensitivity vectors in this file.' })); }
+    var grid = el('div', { cls: 'grid2' });
+    sec.appendChild(grid);
+    names.forEach(function (name) {
+      var useRel = !!rel[name];
+      var vals = (useRel ? rel[name] : raw[name]).values;
+      var units = useRel ? '1' : raw[name].units;
+      var order = params.map(function (p, i) { return i; }).filter(function (i) { return vals[i] !== null; });
+      order.sort(function (a, b) { return Math.abs(vals[b]) - Math.abs(vals[a]); });
+      var id = 'fig-sens-' + safeId(name);
+      var f = figure(grid, id, 'Parameters ranked by the magnitude of their ' + (useRel ? 'relative ' : '') + 'sensitivity of ' + name + '.', 70 + 20 * order.length);
+      draw(id, f, {
+        type: 'bar',
+        data: { labels: order.map(function (i) { return params[i]; }), datasets: [{
+          label: useRel ? '∂ln ' + name + ' / ∂ln p' : '∂' + name + ' / ∂p',
+          data: order.map(function (i) { return vals[i]; }),
+          backgroundColor: order.map(function (i) { return vals[i] >= 0 ? '#d6604d' : '#4393c3'; })
+        }] },
+        options: {
+          indexAxis: 'y',
+          plugins: { title: titleOpt('Ranked sensitivity of ' + name), legend: { display: false },
+            tooltip: { callbacks: { afterLabel: function (c) {
+              var i = order[c.dataIndex];
+              var pu = (s.parameter_units || [])[i];
+              return raw[name] ? 'raw ∂' + name + '/∂p = ' + fmt(raw[name].values[i]) + ' ' + (raw[name].units || '') + (pu ? ' (parameter unit: ' + pu + ')' : '') : '';
+            } } } },
+          scales: {
+            x: axis(useRel ? 'relative sensitivity ∂ln ' + name + ' / ∂ln p (1)' : withUnits('sensitivity ∂' + name + ' / ∂p', units)),
+            y: axis('parameter', { ticks: { autoSkip: false } })
+          }
+        }
+      });
+    });
+    // Heat map feature x parameter.
+    var relNames = (s.relative || []).map(function (r) { return r.name; });
+    var normalised = false, rowsFor = relNames.map(function (n) { return rel[n].values; });
+    if (!relNames.length && (s.features || []).length) {
+      normalised = true;
+      relNames = s.features.map(function (r) { return r.name; });
+      rowsFor = s.features.map(function (r) {
+        var m = Math.max.apply(null, r.values.map(function (v) { return v === null ? 0 : Math.abs(v); })) || 1;
+        return r.values.map(function (v) { return v === null ? null : v / m; });
+      });
+    }
+    if (relNames.length && params.length) {
+      var m = 0;
+      rowsFor.forEach(function (row) { row.forEach(function (v) { if (v !== null) m = Math.max(m, Math.abs(v)); }); });
+      m = m || 1;
+      var cells = [];
+      relNames.forEach(function (fn, r) {
+        params.forEach(function (p, c) {
+          var v = rowsFor[r][c];
+          cells.push({ x: p, y: fn, v: v, color: v === null ? '#ddd' : ramp(RDBU, (v / m + 1) / 2) });
+        });
+      });
+      var id = 'fig-sens-heatmap';
+      var f = figure(sec, id, (normalised ? 'Sensitivities divided by the largest magnitude of each feature' : 'Relative sensitivities ∂ln feature / ∂ln parameter') +
+        ': red increases, blue decreases the feature.', 110 + 28 * relNames.length + 8 * Math.max.apply(null, params.map(function (p) { return p.length; })));
+      heatmap(id, f, normalised ? 'Normalised sensitivity: feature × parameter' : 'Relative sensitivity: feature × parameter',
+        params, relNames, cells, 'parameter', 'feature', normalised ? 'normalised sensitivity (1)' : 'relative sensitivity (1)');
+      colorbar(f.fig, RDBU, -m, m, normalised ? 'normalised sensitivity (1)' : 'relative sensitivity ∂ln f / ∂ln p (1)');
+    }
+    if (s.floquet) {
+      var re = s.floquet.real, im = s.floquet.imag;
+      var lim = 1.15;
+      re.forEach(function (v, i) { lim = Math.max(lim, 1.1 * Math.abs(v || 0), 1.1 * Math.abs(im[i] || 0)); });
+      lim = Math.ceil(lim * 2) / 2;
+      var circle = [];
+      for (var k = 0; k <= 180; k++) circle.push({ x: Math.cos(2 * Math.PI * k / 180), y: Math.sin(2 * Math.PI * k / 180) });
+      var idf = 'fig-floquet';
+      var box = el('div', { style: 'max-width:520px' });
+      sec.appendChild(box);
+      var ff = figure(box, idf, 'Floquet multipliers of the periodic orbit in the complex plane with the unit circle; all but the trivial multiplier 1 inside the circle means a stable limit cycle.', 500);
+      draw(idf, ff, {
+        type: 'scatter',
+        data: { datasets: [
+          { label: 'Floquet multipliers μ', data: re.map(function (v, i) { return { x: v, y: im[i] }; }), backgroundColor: '#d62728', pointRadius: 5 },
+          { label: 'unit circle |μ| = 1', data: circle, showLine: true, pointRadius: 0, borderColor: '#888', borderWidth: 1, borderDash: [4, 3] }
+        ] },
+        options: {
+          plugins: { title: titleOpt('Floquet multipliers (complex plane)') },
+          scales: { x: axis('Re μ (1)', { min: -lim, max: lim }), y: axis('Im μ (1)', { min: -lim, max: lim }) }
+        }
+      });
+      table(sec, 'table-floquet', 'Floquet multipliers', ['#', 'Re μ', 'Im μ', '|μ|'],
+        re.map(function (v, i) { return [i + 1, v, im[i], v === null || im[i] === null ? null : Math.hypot(v, im[i])]; }), [true, true, true, true]);
+    }
+    if (s.prc) {
+      var idp = 'fig-prc';
+      var pts = s.prc.phase.map(function (v, i) { return { x: v, y: s.prc.shift[i] }; }).sort(function (a, b) { return a.x - b.x; });
+      var fp = figure(sec, idp, 'Phase response curve: phase shift of the limit cycle after a brief kick' + (s.prc.state ? ' to ' + s.prc.state : '') + ' at each phase (positive = advance).', 320);
+      draw(idp, fp, {
+        type: 'scatter',
+        data: { datasets: [{ label: 'phase shift', data: pts, showLine: true, borderColor: PALETTE[4], backgroundColor: PALETTE[4], pointRadius: 2 }] },
+        options: { plugins: { title: titleOpt('Phase response curve' + (s.prc.state ? ' (kick to ' + s.prc.state + ')' : '')), legend: { display: false } },
+          scales: { x: axis(withUnits('phase of the kick', s.prc.phase_units || 'cycles')), y: axis(withUnits('phase shift', s.prc.shift_units || 'cycles')) } }
+      });
+    }
+  }
+
+  // ------------------------------------------------------------------ fit
+  function fit(s) {
+    var sec = section('fit', 'Fit', 'Parameter estimation: multistart waterfall, convergence, fit against the data, estimates with standard errors and their correlations.');
+    var names = s.parameter_names || [];
+    var grid = el('div', { cls: 'grid2' });
+    sec.appendChild(grid);
+    var costUnits = s.cost_units && s.cost_units !== '1' ? s.cost_units : '1';
+    if (s.final_cost && s.final_cost.length) {
+      var sorted = s.final_cost.filter(function (v) { return v !== null; }).sort(function (a, b) { return a - b; });
+      var id = 'fig-fit-waterfall';
+      var f = figure(grid, id, 'Waterfall of the ' + s.final_cost.length + ' multistarts: final cost of each start, sorted. A flat step at the bottom means several starts found the same optimum.', 320);
+      draw(id, f, {
+        type: 'line',
+        data: { datasets: [lineDataset('final cost', sorted.map(function (v, i) { return { x: i + 1, y: v }; }), 0, { pointRadius: 3, stepped: false })] },
+        options: { plugins: { title: titleOpt('Multistart waterfall (' + sorted.length + ' starts)'), legend: { display: false } },
+          scales: { x: axis('start, sorted by final cost', { type: 'linear', min: 1, max: Math.max(sorted.length, 2), ticks: { precision: 0 } }),
+            y: axis(withUnits('final cost', costUnits), { type: allPositive(sorted) ? 'logarithmic' : 'linear' }) } }
+      });
+    }
+    if (s.cost_history && s.cost_history.length) {
+      var ch = s.cost_history;
+      var idc = 'fig-fit-cost';
+      var fc = figure(grid, idc, 'Cost of the best start at each optimiser iteration' + (allPositive(ch.filter(function (v) { return v !== null; })) ? ' (log scale).' : '.'), 320);
+      draw(idc, fc, {
+        type: 'line',
+        data: { datasets: [lineDataset('cost', ch.map(function (v, i) { return { x: i, y: v }; }), 1, { pointRadius: 2 })] },
+        options: { plugins: { title: titleOpt('Cost history'), legend: { display: false } },
+          scales: { x: axis('iteration', { type: 'linear', ticks: { precision: 0 } }),
+            y: axis(withUnits('cost', costUnits), { type: allPositive(ch.filter(function (v) { return v !== null; })) ? 'logarithmic' : 'linear' }) } }
+      });
+    }
+    var tu = s.time_units || 'ms';
+    (s.kinematics || []).forEach(function (k, i) {
+      var id = 'fig-fit-data-' + safeId(k.name);
+      var f = figure(grid, id, 'Measured ' + k.name + ' (points) and the best-fit model (line), in ' + (k.units || 'deg') + '.', 300);
+      var ds = [{ label: 'data ' + k.name, data: xy(k.data.t, k.data.y), parsing: false, showLine: false, pointRadius: 1.6, backgroundColor: '#555', borderColor: '#555' }];
+      if (k.model) ds.push(lineDataset('model ' + k.name, xy(k.model.t, k.model.y), 1, { borderWidth: 2 }));
+      draw(id, f, {
+        type: 'scatter', data: { datasets: ds },
+        options: { plugins: { title: titleOpt('Fit against data: ' + k.name) },
+          scales: { x: axis(withUnits('time', tu)), y: axis(withUnits(k.name + ' angle', k.units || 'deg')) } }
+      });
+    });
+    if (names.length && s.estimate) {
+      var units = s.parameter_units || [];
+      table(sec, 'table-fit-estimates', 'Estimates ± standard errors', ['parameter', 'estimate', '± standard error', 'relative SE (%)', 'unit'],
+        names.map(function (n, i) {
+          var e = s.estimate[i], se = s.standard_error ? s.standard_error[i] : null;
+          return [n, e, se, e && se !== null ? 100 * Math.abs(se / e) : null, units[i] || ''];
+        }), [false, true, true, true, false]);
+      // A bar chart of the relative standard errors makes poorly identified parameters stand out.
+      if (s.standard_error) {
+        var idr = 'fig-fit-rse';
+        var rse = names.map(function (n, i) { var e = s.estimate[i], se = s.standard_error[i]; return e && se !== null ? 100 * Math.abs(se / e) : null; });
+        var fr = figure(sec, idr, 'Relative standard error of each estimate (standard error / |estimate|); large values mean the data hardly constrain the parameter.', 70 + 22 * names.length);
+        draw(idr, fr, {
+          type: 'bar', data: { labels: names, datasets: [{ label: 'relative standard error (%)', data: rse, backgroundColor: '#9467bd' }] },
+          options: { indexAxis: 'y', plugins: { title: titleOpt('Relative standard errors of the estimates'), legend: { display: false } },
+            scales: { x: axis('relative standard error (%)', { beginAtZero: true }), y: axis('parameter', { ticks: { autoSkip: false } }) } }
+        });
+      }
+    }
+    if (s.correlation && names.length) {
+      var n = names.length, cells = [];
+      for (var r = 0; r < n; r++) for (var c = 0; c < n; c++) {
+        var v = s.correlation[r * n + c];
+        cells.push({ x: names[c], y: names[r], v: v, color: v === null ? '#ddd' : ramp(RDBU, (v + 1) / 2) });
+      }
+      var idk = 'fig-fit-correlation';
+      var box = el('div', { style: 'max-width:760px' });
+      sec.appendChild(box);
+      var fk = figure(box, idk, 'Correlations between the estimates (from the inverse Fisher information); |r| near 1 means two parameters trade off against each other.', 160 + 34 * n + 6 * Math.max.apply(null, names.map(function (p) { return p.length; })));
+      heatmap(idk, fk, 'Correlation of the estimates', names, names, cells, 'parameter', 'parameter', 'correlation r (1)');
+      colorbar(fk.fig, RDBU, -1, 1, 'correlation r (1)');
+    }
+  }
+
+  // ------------------------------------------------------------------ sweep
+  function uniqueSorted(a) {
+    var u = [];
+    a.forEach(function (v) { if (u.indexOf(v) < 0) u.push(v); });
+    return u.sort(function (x, y) { return (typeof x === 'number' && typeof y === 'number') ? x - y : String(x) < String(y) ? -1 : 1; });
+  }
+  function sweep(s) {
+    var names = s.parameter_names || [], units = s.parameter_units || [], pts = s.points || [];
+    var sec = section('sweep', 'Sweep', pts.length && names.length ? 'Features and gait class at each of the ' + pts.length + ' sweep points, over the first two swept parameters' +
+      (names.length > 2 ? ' (one panel per combination of the others)' : '') + '.' : 'Results over the swept parameter values.');
+    sweepAxes(sec, s);
+    if (!pts.length || !names.length) {
+      if (!(s.axes || []).length && !(s.extra || []).length) sec.appendChild(el('p', { cls: 'empty', text: 'No sweep points in this file.' }));
+      return;
+    }
+    var pname = function (j) { return withUnits(names[j], units[j]); };
+    var status = s.status || pts.map(function () { return 'ok'; });
+    var gait = s.gait_class ? s.gait_class.slice() : null;
+    // Panels: one per combination of parameters beyond the first two.
+    var panels = {}, porder = [];
+    pts.forEach(function (p, i) {
+      var key = p.slice(2).map(function (v, j) { return names[j + 2] + ' = ' + fmt(v); }).join(', ');
+      if (!panels[key]) { panels[key] = []; porder.push(key); }
+      panels[key].push(i);
+    });
+    if (porder.length > 6) { panels = { '': pts.map(function (p, i) { return i; }) }; porder = ['']; }
+    var xName = pname(0), yName = names.length > 1 ? pname(1) : '';
+    function drawPanels(baseId, what, valueOf, colorOf, valueLabel, after, numeric) {
+      // Panels of one quantity side by side, on one colour scale.
+      var parent = sec;
+      if (porder.length > 1) { parent = el('div', { cls: 'grid2' }); sec.appendChild(parent); }
+      porder.forEach(function (key, k) {
+        var idx = panels[key];
+        var id = baseId + (k ? '--' + k : '');
+        var title = what + (key ? ' at ' + key : '');
+        if (numeric && names.length === 1) {
+          // One swept parameter: the feature against it.
+          var order = idx.slice().sort(function (a, b) { return pts[a][0] - pts[b][0]; });
+          var fl = figure(parent, id, title + ' against ' + xName + ' (' + idx.length + ' points; failed points left out).', 320);
+          draw(id, fl, {
+            type: 'scatter',
+            data: { datasets: [{ label: valueLabel, data: order.filter(function (i) { return status[i] === 'ok'; }).map(function (i) { return { x: pts[i][0], y: valueOf(i) }; }),
+              showLine: true, borderColor: PALETTE[0], backgroundColor: PALETTE[0], pointRadius: 4 }] },
+            options: { plugins: { title: titleOpt(title), legend: { display: false } }, scales: { x: axis(xName), y: axis(valueLabel) } }
+          });
+          return;
+        }
+        var xsv = uniqueSorted(idx.map(function (i) { return pts[i][0]; }));
+        var ysv = names.length > 1 ? uniqueSorted(idx.map(function (i) { return pts[i][1]; })) : [null];
+        var seen = {}, dup = false;
+        idx.forEach(function (i) { var kk = pts[i][0] + '|' + (names.length > 1 ? pts[i][1] : ''); if (seen[kk]) dup = true; seen[kk] = 1; });
+        var isGrid = !dup && xsv.length * ysv.length <= 2 * idx.length;
+        var caption = title + ' over ' + xName + (yName ? ' and ' + yName : '') + (isGrid ? ' (grid of ' + idx.length + ' points).' : ' (' + idx.length + ' points, not a grid).');
+        if (isGrid) {
+          var xl = xsv.map(fmt), yl = ysv.map(function (v) { return v === null ? '—' : fmt(v); });
+          var cells = idx.map(function (i) {
+            return { x: fmt(pts[i][0]), y: names.length > 1 ? fmt(pts[i][1]) : '—', v: valueOf(i), color: colorOf(i), note: status[i] !== 'ok' ? 'failed: ' + status[i] : null };
+          });
+          var f = figure(parent, id, caption, Math.min(560, 140 + 30 * yl.length));
+          heatmap(id, f, title, xl, yl, cells, xName, yName || '(single swept parameter)', valueLabel, true);
+          after(f.fig);
+        } else {
+          var fs = figure(parent, id, caption, 380);
+          draw(id, fs, {
+            type: 'scatter',
+            data: { datasets: [{ label: valueLabel, data: idx.map(function (i) { return { x: pts[i][0], y: names.length > 1 ? pts[i][1] : 0, v: valueOf(i), note: status[i] !== 'ok' ? 'failed: ' + status[i] : null }; }),
+              pointRadius: 6, pointBackgroundColor: idx.map(colorOf), pointBorderColor: '#444', pointBorderWidth: 0.5 }] },
+            options: { plugins: { title: titleOpt(title), legend: { display: false },
+              tooltip: { callbacks: { label: function (c) { return [names[0] + ' = ' + fmt(c.raw.x), (names.length > 1 ? names[1] + ' = ' + fmt(c.raw.y) : ''), valueLabel + ': ' + (c.raw.note || fmt(c.raw.v))]; } } } },
+              scales: { x: axis(xName), y: axis(yName || '(single swept parameter)') } }
+          });
+          after(fs.fig);
+        }
+      });
+    }
+    (s.features || []).forEach(function (ft) {
+      var rng = finiteRange(ft.values);
+      var label = withUnits(ft.name, ft.units);
+      drawPanels('fig-sweep-' + safeId(ft.name), ft.name, function (i) { return ft.values[i]; }, function (i) {
+        var v = ft.values[i];
+        return v === null || status[i] !== 'ok' ? '#d0d0d0' : ramp(VIRIDIS, (v - rng[0]) / (rng[1] - rng[0]));
+      }, label, function (fig) { colorbar(fig, VIRIDIS, rng[0], rng[1], label + '; grey: failed or undefined'); }, true);
+    });
+    if (gait || s.status) {
+      if (!gait) gait = status.map(function (st) { return st === 'ok' ? 'unclassified' : 'failed'; });
+      gait = gait.map(function (g, i) { return status[i] !== 'ok' && !g ? 'failed' : g; });
+      var classes = uniqueSorted(gait);
+      var extra = PALETTE.filter(function (c) { return Object.keys(GAIT_COLORS).map(function (k) { return GAIT_COLORS[k]; }).indexOf(c) < 0; });
+      var cmap = {};
+      classes.forEach(function (c, i) { cmap[c] = GAIT_COLORS[c] || extra[i % extra.length]; });
+      drawPanels('fig-sweep-gait', 'Gait class', function (i) { return gait[i]; }, function (i) { return status[i] !== 'ok' ? GAIT_COLORS.failed : cmap[gait[i]]; },
+        'gait class', function (fig) { legend(fig, classes.map(function (c) { return [c, cmap[c]]; }).concat(classes.indexOf('failed') < 0 && status.some(function (st) { return st !== 'ok'; }) ? [['failed', GAIT_COLORS.failed]] : [])); });
+      var counts = classes.map(function (c) { return [c, gait.filter(function (g) { return g === c; }).length]; });
+      table(sec, 'table-sweep-gaits', 'Gait classes', ['gait class', 'points'], counts, [false, true]);
+    }
+    var failed = status.map(function (st, i) { return i; }).filter(function (i) { return status[i] !== 'ok'; });
+    if (failed.length) {
+      table(sec, 'table-sweep-failures', 'Failed points (' + failed.length + ' of ' + pts.length + ')', ['point'].concat(names.map(function (n, j) { return pname(j); })).concat(['reason']),
+        failed.map(function (i) { return [i].concat(pts[i]).concat([status[i]]); }), [true].concat(names.map(function () { return true; })).concat([false]));
+    }
+  }
+
+  // Sweeps along single axes: /sweep/<parameter>/values with same-length results (e.g. stable 0/1).
+  function sweepAxes(sec, s) {
+    var axes = s.axes || [];
+    if (axes.length) {
+      var grid = el('div', { cls: 'grid2' });
+      sec.appendChild(grid);
+      axes.forEach(function (ax) {
+        if (!ax.series.length) return;
+        var id = 'fig-sweep-axis-' + safeId(ax.name);
+        var yl = ax.series.length === 1 ? withUnits(ax.series[0].name, ax.series[0].units) : 'value';
+        var f = figure(grid, id, ax.series.map(function (r) { return withUnits(r.name, r.units); }).join(', ') + ' at each swept value of ' + ax.name + '.', 300);
+        draw(id, f, {
+          type: 'scatter',
+          data: { datasets: ax.series.map(function (r, i) {
+            return { label: withUnits(r.name, r.units), data: ax.x.map(function (x, k) { return { x: x, y: r.values[k] }; }).sort(function (a, b) { return a.x - b.x; }),
+              showLine: true, stepped: ax.series.length === 1 && r.values.every(function (v) { return v === 0 || v === 1 || v === null; }) ? 'middle' : false,
+              borderColor: PALETTE[i % PALETTE.length], backgroundColor: PALETTE[i % PALETTE.length], pointRadius: 2.5 };
+          }) },
+          options: { plugins: { title: titleOpt(ax.series.map(function (r) { return r.name; }).join(', ') + ' over ' + ax.name), legend: { display: ax.series.length > 1 } },
+            scales: { x: axis(withUnits(ax.name, ax.units)), y: axis(yl) } }
+        });
+      });
+      var rows = [];
+      axes.forEach(function (ax) { ax.scalars.forEach(function (c) { rows.push([ax.name, c.name, c.value, c.units || '']); }); });
+      if (rows.length) table(sec, 'table-sweep-axes', 'Results per swept parameter', ['parameter', 'result', 'value', 'unit'], rows, [false, false, true, false]);
+    }
+    if ((s.extra || []).length)
+      table(sec, 'table-sweep-extra', 'Other sweep data', ['dataset', 'values', 'unit'],
+        s.extra.map(function (e) { return [e.name, e.values.map(fmt).join(', '), e.units || '']; }), [false, false, false]);
+  }
+
+  // ------------------------------------------------------------------ main
+  try {
+    header();
+    if (DATA.trajectory) trajectory(DATA.trajectory);
+    if (DATA.sensitivity) sensitivity(DATA.sensitivity);
+    if (DATA.fit) fit(DATA.fit);
+    if (DATA.sweep) sweep(DATA.sweep);
+    if (DATA.features) features(DATA.features);
+    if (DATA.parameters) parameters(DATA.parameters);
+    if (DATA.ignored && DATA.ignored.length) {
+      var sec = section('other', 'Other contents', 'Groups and datasets this report does not draw.');
+      sec.appendChild(el('ul', { id: 'list-ignored' }, DATA.ignored.map(function (p) { return el('li', { text: p }); })));
+      rendered.push('list-ignored');
+    }
+    if (!main.children.length) main.appendChild(el('p', { cls: 'empty', text: 'This file holds none of the groups a report can show (trajectory, features, parameters, sensitivity, fit, sweep).' }));
+  } catch (e) {
+    console.error('report failed: ' + (e && e.stack || e));
+  }
+  document.body.setAttribute('data-figures', rendered.join(' '));
+  document.body.setAttribute('data-errors', errors.join(' | '));
+  document.body.setAttribute('data-status', errors.length ? 'error' : 'ok');
+})();

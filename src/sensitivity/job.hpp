@@ -1,0 +1,52 @@
+#pragma once
+// Everything `phasmid sensitivity CONFIG [-o OUT.h5] [--method forward|fd]` does once the
+// model is assembled: the options of the config's [sensitivity] section, the analysis, the
+// optional limit-cycle analysis, and the HDF5 file (DESIGN.md §3, docs/sensitivity.md).
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "io/h5_file.hpp"
+#include "sensitivity/floquet.hpp"
+#include "sensitivity/sensitivity.hpp"
+
+namespace phasmid::sensitivity {
+
+struct SensitivityJob {
+  SensitivityOptions options;
+  bool floquet = false;  // monodromy matrix and multipliers of the cycle
+  FloquetOptions floquet_options;
+  bool section_from_model = true;  // Poincare section at the first angle's maxima (default_section)
+  bool prc = false;      // phase response curve
+  PrcOptions prc_options;
+};
+
+// Reads a [sensitivity] table (keys: parameters = [names], t_end_ms, output_dt_ms,
+// discard_ms, method = "forward"|"fd", trajectory = bool, fd_relative_step,
+// staggered = bool, floquet = bool, transient_ms, max_period_ms, prc_state = "name",
+// prc_amplitude, prc_phases, prc_cycles). Unknown keys and wrong types are errors naming
+// `origin` (e.g. the config file) and the line. Parameter names are checked against `model`.
+SensitivityJob parse_sensitivity_section(const toml::table& section, const model::OdeModel& model,
+                                         const std::string& origin, SensitivityJob defaults = {});
+
+struct SensitivityOutcome {
+  SensitivityReport report;
+  bool has_floquet = false;
+  FloquetResult floquet;
+  bool has_prc = false;
+  PhaseResponseCurve prc;
+};
+
+SensitivityOutcome run_sensitivity_job(const model::OdeModel& model, const std::vector<double>& p,
+                                       const SensitivityJob& job);
+
+// Writes run info, /parameters/{names,values,units}, /features, /sensitivity/... (and
+// /sensitivity/floquet, /sensitivity/prc) to `path` atomically.
+void write_sensitivity_file(const std::string& path, const model::OdeModel& model, const std::vector<double>& p,
+                            const SensitivityJob& job, const SensitivityOutcome& outcome, const io::RunInfo& info);
+
+// A human-readable summary: per feature its value and the `top` parameters by |relative|.
+std::string format_summary(const SensitivityOutcome& outcome, size_t top = 3);
+
+}  // namespace phasmid::sensitivity

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# End-to-end: the Cruse and SimRoach2 verbs from outside the source tree (embedded configs and
+# tables), and non-zero exits with a one-line reason on bad input.
+set -u
+PHASMID=$1
+fail=0
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cd "$tmp"
+
+out=$("$PHASMID" cruse cruse1980_gait2 -o run.h5) || { echo "cruse failed"; fail=1; }
+grep -q "in phase: L1-R2 L2-R3" <<<"$out" || { echo "gait II pattern missing: $out"; fail=1; }
+[ -f run.h5 ] && [ ! -f run.h5.tmp ] || { echo "HDF5 not committed"; fail=1; }
+
+out=$("$PHASMID" cruse cruse1980_gait1) || { echo "gait I failed"; fail=1; }
+grep -q "lag L3->L1 1000.0 ms" <<<"$out" || { echo "gait I lag should equal the 1000 ms period: $out"; fail=1; }
+
+"$PHASMID" cruse cruse1980_gait2 --set T9=1 2>err.txt && { echo "unknown --set accepted"; fail=1; }
+[ "$(wc -l <err.txt)" -eq 1 ] && grep -q "T9" err.txt || { echo "bad message: $(cat err.txt)"; fail=1; }
+
+printf 'model = "cruse1980"\n[cruse1980]\nT1 = 7\nT3 = 1\n' >bad.toml
+"$PHASMID" cruse bad.toml 2>err.txt && { echo "unknown key accepted"; fail=1; }
+grep -q "bad.toml:4: unknown key 'cruse1980.T3'" err.txt || { echo "bad message: $(cat err.txt)"; fail=1; }
+
+out=$("$PHASMID" simroach2 check-muscles) || { echo "check-muscles failed"; fail=1; }
+grep -q "51 of 60 muscles" <<<"$out" || { echo "check-muscles summary: $out"; fail=1; }
+
+exit $fail
