@@ -114,6 +114,8 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
     m = std::make_unique<model::MechanicalJointModel>(leg, joint, inc, first, 500, angle0, thc_table);
   } else if (type == "single_joint") {
     m = model::build_single_joint_model(leg, joint, thc_table);
+  } else if (type == "curve_walking") {
+    m = model::build_curve_walking_model();
   } else if (type == "leg" || type == "three_legs") {
     bool sw = false;
     if (const toml::node* n = mt->get("direction_switch")) {
@@ -143,7 +145,7 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
   } else {
     const toml::node* n = mt->get("type");
     throw Error((n ? where(cfg, *n) : cfg.path) + ": unknown model type '" + type +
-                "' (expected single_joint, mechanical_joint, leg or three_legs)");
+                "' (expected single_joint, mechanical_joint, leg, three_legs or curve_walking)");
   }
 
   if (const toml::table* pt = cfg.table["parameters"].as_table()) {
