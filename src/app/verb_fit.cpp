@@ -1,0 +1,64 @@
+// phasmid fit CONFIG [--data KIN.csv] [--parameters PARAMS.tsv] [--optimizer ceres|nlopt:NAME]
+//                    [--multistart N] [-o OUT.h5]   (docs/fit.md)
+// Exit status: 0 converged, 3 finished without convergence (result written, summary says why),
+// 1 bad input (one line on stderr).
+#include <iostream>
+
+#include "app/verb.hpp"
+#include "common/error.hpp"
+#include "config/config.hpp"
+#include "fit/fit_config.hpp"
+#include "fit/fit_run.hpp"
+#include "io/h5_file.hpp"
+
+namespace phasmid::app {
+namespace {
+struct FitArgs {
+  std::string config, out;
+  std::vector<std::string> sets;
+  fit::FitOverrides ov;
+  bool quiet = false;
+};
+
+int run_fit_verb(const FitArgs& a) {
+  config::Config cfg = config::load_config(a.config);
+  auto model = config::build_model(cfg, a.sets);
+  fit::FitSpec spec = fit::load_fit_spec(cfg, *model, a.ov);
+  spec.optimizer.progress = !a.quiet;
+  spec.problem.solver.progress = false;
+  fit::FitProblem problem(*model, spec.parameters, spec.targets, spec.problem);
+  const std::string out = a.out.empty() ? "fit.h5" : a.out;
+  io::H5Writer w(out);  // opened before the work so an unwritable path fails early
+  fit::FitResult result = fit::run_fit(problem, spec);
+  w.write_run_info({config::resolved_config_text(cfg, a.sets), command_line()});
+  fit::write_fit_h5(w, problem, spec, result);
+  w.commit();
+  const fit::FitSummary& b = result.best();
+  if (!a.quiet) std::cerr << fit::format_result(problem, result) << "phasmid fit: -> " << out << "\n";
+  if (!b.converged) {
+    std::cerr << "phasmid fit: " << (b.usable ? "did not converge" : "failed") << " (" << b.termination
+              << (b.message.empty() ? "" : ": " + b.message) << "); results in " << out << "\n";
+    return 3;
+  }
+  return 0;
+}
+
+const RegisterVerb reg{{"fit", "Fit parameters to feature targets, switch conditions (2.42) or kinematic recordings",
+                        [](CLI::App& sub) {
+                          auto a = std::make_shared<FitArgs>();
+                          sub.add_option("config", a->config, "scenario config (TOML) with an optional [fit] section")->required();
+                          sub.add_option("--data", a->ov.data, "kinematic recording (CSV: time_ms, <leg>.<joint> in deg)");
+                          sub.add_option("--data-format", a->ov.data_format, "csv (default) or anipose");
+                          sub.add_option("--parameters", a->ov.parameters, "PEtab parameter table (TSV)");
+                          sub.add_option("--optimizer", a->ov.optimizer, "ceres (default) or nlopt:NAME (BOBYQA, COBYLA, NELDERMEAD, SBPLX, LBFGS, SLSQP, MMA, DIRECT_L, CRS2_LM, ISRES, MLSL)");
+                          sub.add_option("--multistart", a->ov.multistart, "number of starts (nominal + Latin hypercube / Sobol)");
+                          sub.add_option("--seed", a->ov.seed, "seed of the start sampling");
+                          sub.add_option("--target-set", a->ov.target_set, "which set of [[fit.feature]]/[[fit.switch]] targets");
+                          sub.add_option("--max-iterations", a->ov.max_iterations, "Ceres iteration limit");
+                          sub.add_option("-o,--output", a->out, "output HDF5 file (default fit.h5)");
+                          sub.add_option("--set", a->sets, "override a parameter: NAME=VALUE (repeatable)");
+                          sub.add_flag("-q,--quiet", a->quiet, "no progress or summary output");
+                          return std::function<int()>([a] { return run_fit_verb(*a); });
+                        }}};
+}  // namespace
+}  // namespace phasmid::app

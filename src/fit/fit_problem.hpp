@@ -1,0 +1,99 @@
+#pragma once
+// A fit problem (Ceres' "Problem" + "CostFunction" in one): a model, the parameters to
+// estimate (on their scales, within bounds) and the targets. evaluate() runs one simulation
+// with forward sensitivities of the estimated parameters and returns the weighted residuals
+// and their exact Jacobian with respect to the scaled parameters x. Cost = 1/2 sum r^2.
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "features/features.hpp"
+#include "fit/parameter_table.hpp"
+#include "fit/targets.hpp"
+#include "model/ode_model.hpp"
+#include "solver/simulator.hpp"
+
+namespace phasmid::fit {
+
+struct ProblemSettings {
+  double t_end_ms = 0;     // 0: the latest time any target needs (at least one output)
+  double discard_ms = 0;   // transient ignored by feature targets
+  solver::SolverOptions solver;
+  features::FeatureOptions feature_options;  // discard_ms overwritten by the field above
+};
+
+class FitProblem {
+ public:
+  // `parameters` lists every parameter the fit touches; fixed ones (estimate = false) are
+  // set to their nominal value. Throws Error for unknown names, parameters whose forward
+  // sensitivities would be inexact (they move a switch time or the initial state), unknown
+  // features or channels, and problems without targets.
+  FitProblem(const model::OdeModel& model, std::vector<FitParameter> parameters, Targets targets,
+             ProblemSettings settings);
+
+  size_t num_parameters() const { return est_.size(); }   // estimated
+  size_t num_residuals() const { return labels_.size(); }
+  const std::vector<std::string>& residual_labels() const { return labels_; }
+  const std::vector<FitParameter>& estimated() const { return est_; }
+  const std::vector<FitParameter>& all_parameters() const { return params_; }
+  std::vector<std::string> parameter_names() const;
+  std::string parameter_unit(size_t j) const;                 // of estimated parameter j
+  std::vector<std::string> tied_parameters(size_t j) const;   // model parameters it sets ('*' ids tie several)
+
+  // Scaled start (nominal values) and bounds.
+  std::vector<double> start() const;
+  std::vector<double> lower() const;
+  std::vector<double> upper() const;
+  // Linear-scale values of the estimated parameters.
+  std::vector<double> to_linear(const std::vector<double>& x) const;
+  // The model's full parameter vector for scaled estimates x.
+  std::vector<double> model_parameters(const double* x) const;
+
+  // Residuals r (num_residuals) and, if J != nullptr, dr/dx (row-major m x n). Returns false
+  // (with the reason in *error) if the simulation fails or a feature cannot be computed.
+  bool evaluate(const double* x, double* r, double* J, std::string* error = nullptr) const;
+
+  // Central finite-difference Jacobian (row-major), for tests and benchmarks. Relative step h.
+  bool jacobian_fd(const double* x, double* J, double h = 1e-6, std::string* error = nullptr) const;
+
+  // A dense trajectory (dt ms) at x over the problem horizon, for output.
+  solver::SolveResult simulate(const double* x, double dt_ms) const;
+
+  // The model values compared with each kinematic target's samples (deg), per channel.
+  struct KinematicComparison {
+    std::vector<double> time_ms;  // data times (file time, without the offset)
+    std::vector<std::string> channels;
+    std::vector<std::vector<double>> data_deg, model_deg;
+  };
+  std::vector<KinematicComparison> kinematic_comparison(const double* x) const;
+
+  long evaluations() const { return evaluations_; }
+  long jacobian_evaluations() const { return jacobian_evaluations_; }
+  double horizon_ms(const double* x) const;
+  const model::OdeModel& model() const { return model_; }
+  const ProblemSettings& settings() const { return settings_; }
+
+ private:
+  struct Run;
+  Run run(const double* x, bool with_sens) const;
+
+  const model::OdeModel& model_;
+  std::vector<FitParameter> params_, est_;
+  Targets targets_;
+  ProblemSettings settings_;
+  std::vector<double> base_p_;
+  // Per estimated parameter: model parameter index, or kinematic-target offset (kind).
+  struct EstMap { bool is_model; std::vector<size_t> model_indices, sens_columns; };
+  std::vector<EstMap> est_map_;
+  std::vector<size_t> sens_params_;
+  // Per kinematic target: index into est_ (or -1) of its offset and the fixed offset value.
+  std::vector<long> offset_est_;
+  std::vector<double> offset_fixed_;
+  std::vector<size_t> switch_channel_, kin_channel_base_;
+  std::vector<std::vector<size_t>> kin_channels_;  // per kinematic target: model angle channel per data channel
+  std::vector<std::string> labels_;
+  mutable std::atomic<long> evaluations_{0}, jacobian_evaluations_{0};
+};
+
+}  // namespace phasmid::fit

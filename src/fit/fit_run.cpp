@@ -1,0 +1,222 @@
+#include "fit/fit_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <sstream>
+
+#include "common/error.hpp"
+#include "features/features.hpp"
+#include "io/h5_file.hpp"
+#include "io/trajectory_writer.hpp"
+
+namespace phasmid::fit {
+
+FitResult run_fit(const FitProblem& problem, const FitSpec& spec) {
+  std::vector<size_t> prof;
+  for (auto& name : spec.profile) {
+    auto names = problem.parameter_names();
+    auto it = std::find(names.begin(), names.end(), name);
+    if (it == names.end()) throw Error("profile: '" + name + "' is not an estimated parameter of this fit");
+    prof.push_back(static_cast<size_t>(it - names.begin()));
+  }
+  FitResult res;
+  res.multistart = multistart(problem, spec.optimizer, spec.multistart);
+  const FitSummary& b = res.best();
+  res.estimate = problem.to_linear(b.x);
+  if (b.usable) {
+    res.uncertainty = estimate_uncertainty(problem, b.x, spec.absolute_sigma);
+    for (size_t j : prof)
+      res.profiles.push_back(profile_likelihood(problem, b.x, b.final_cost, j, res.uncertainty.sigma2,
+                                                res.uncertainty.standard_error_scaled, spec.profile_points,
+                                                spec.profile_span, spec.optimizer));
+  } else {
+    res.uncertainty.message = "no usable optimum: no standard errors";
+    const size_t n = problem.num_parameters();
+    res.uncertainty.standard_error = Eigen::VectorXd::Constant(n, NAN);
+    res.uncertainty.standard_error_scaled = Eigen::VectorXd::Constant(n, NAN);
+    res.uncertainty.correlation = Eigen::MatrixXd::Constant(n, n, NAN);
+  }
+  return res;
+}
+
+std::string format_result(const FitProblem& problem, const FitResult& r) {
+  std::ostringstream os;
+  const FitSummary& b = r.best();
+  if (r.multistart.runs.size() > 1) {
+    size_t conv = 0;
+    for (auto& s : r.multistart.runs) conv += s.converged;
+    os << "multistart: " << r.multistart.runs.size() << " starts, " << conv << " converged, best is start "
+       << r.multistart.best << "\n";
+  }
+  os << describe(problem, b);
+  size_t w = 9;
+  for (auto& p : problem.estimated()) w = std::max(w, p.id.size());
+  char line[512];
+  std::snprintf(line, sizeof line, "  %-*s  %13s  %11s  %13s  %s\n", static_cast<int>(w), "parameter", "estimate", "std.error",
+                "start", "unit");
+  os << line;
+  for (size_t j = 0; j < problem.num_parameters(); ++j) {
+    const auto& p = problem.estimated()[j];
+    std::string unit = problem.parameter_unit(j);
+    double se = r.uncertainty.standard_error.size() ? r.uncertainty.standard_error[j] : NAN;
+    std::snprintf(line, sizeof line, "  %-*s  %13.6g  %11.3g  %13.6g  %s\n", static_cast<int>(w), p.id.c_str(),
+                  r.estimate[j], se, from_scaled(p.scale, b.x_start[j]), unit.c_str());
+    os << line;
+  }
+  if (!r.uncertainty.message.empty()) os << "  note: " << r.uncertainty.message << "\n";
+  return os.str();
+}
+
+void write_fit_h5(io::H5Writer& out, const FitProblem& problem, const FitSpec& spec, const FitResult& r) {
+  const FitSummary& b = r.best();
+  const size_t n = problem.num_parameters();
+  std::vector<std::string> names = problem.parameter_names(), units, scales;
+  std::vector<double> lo, hi, nominal;
+  for (size_t j = 0; j < n; ++j) {
+    const auto& p = problem.estimated()[j];
+    units.push_back(problem.parameter_unit(j));
+    scales.push_back(scale_name(p.scale));
+    lo.push_back(p.lower);
+    hi.push_back(p.upper);
+    nominal.push_back(p.nominal);
+  }
+  const std::string pu = "see /fit/parameter_units";
+  out.ensure_group("/fit");
+  out.write("/fit/parameter_names", names);
+  out.write("/fit/parameter_units", units);
+  out.write("/fit/parameter_scale", scales);
+  for (size_t j = 0; j < n; ++j) {
+    auto tied = problem.tied_parameters(j);
+    if (tied.size() > 1) out.write("/fit/tied/" + names[j], tied);
+  }
+  out.write("/fit/estimate", r.estimate, pu);
+  std::vector<double> se(n, NAN), se_s(n, NAN), start = problem.to_linear(b.x_start);
+  for (size_t j = 0; j < n; ++j) {
+    if (r.uncertainty.standard_error.size() == static_cast<long>(n)) se[j] = r.uncertainty.standard_error[j];
+    if (r.uncertainty.standard_error_scaled.size() == static_cast<long>(n)) se_s[j] = r.uncertainty.standard_error_scaled[j];
+  }
+  out.write("/fit/standard_error", se, pu);
+  out.write("/fit/standard_error_scaled", se_s, "scaled parameter units (see /fit/parameter_scale)");
+  out.write("/fit/start", start, pu);
+  out.write("/fit/nominal", nominal, pu);
+  out.write("/fit/lower_bound", lo, pu);
+  out.write("/fit/upper_bound", hi, pu);
+  out.write("/fit/cost_history", b.cost_history.empty() ? std::vector<double>{b.final_cost} : b.cost_history, "1");
+  std::vector<double> corr(n * n, NAN);
+  if (r.uncertainty.correlation.rows() == static_cast<long>(n))
+    for (size_t a = 0; a < n; ++a)
+      for (size_t c = 0; c < n; ++c) corr[a * n + c] = r.uncertainty.correlation(a, c);
+  out.write("/fit/correlation", corr, "1", {n, n});
+  if (r.uncertainty.residuals.size()) {
+    std::vector<double> res(r.uncertainty.residuals.data(), r.uncertainty.residuals.data() + r.uncertainty.residuals.size());
+    out.write("/fit/residuals", res, "1 (weighted: (model - target) / tolerance)");
+  }
+  out.write("/fit/residual_labels", problem.residual_labels());
+  // Summary.
+  out.write_scalar("/fit/final_cost", b.final_cost, "1");
+  out.write_scalar("/fit/initial_cost", b.initial_cost, "1");
+  out.write_scalar("/fit/sigma2", r.uncertainty.sigma2, "1");
+  out.set_attribute("/fit", "optimizer", b.optimizer);
+  out.set_attribute("/fit", "termination", b.termination);
+  out.set_attribute("/fit", "message", b.message);
+  out.set_attribute("/fit", "converged", b.converged ? 1.0 : 0.0);
+  out.set_attribute("/fit", "iterations", static_cast<double>(b.iterations));
+  out.set_attribute("/fit", "evaluations", static_cast<double>(b.evaluations));
+  out.set_attribute("/fit", "wall_seconds", b.wall_seconds);
+  out.set_attribute("/fit", "target_set", spec.target_set);
+  out.set_attribute("/fit", "absolute_sigma", spec.absolute_sigma ? 1.0 : 0.0);
+  std::string at_bound;
+  for (auto& a : b.at_bound) at_bound += (at_bound.empty() ? "" : " ") + a;
+  out.set_attribute("/fit", "at_bound", at_bound);
+  out.set_attribute("/fit", "uncertainty_note", r.uncertainty.message);
+  std::string inputs;
+  for (auto& i : spec.inputs) inputs += (inputs.empty() ? "" : " ") + i;
+  out.set_attribute("/fit", "inputs", inputs);
+  out.write_string("/fit/report", b.report);
+  out.write_string("/fit/summary", format_result(problem, r));
+
+  // Multistart (waterfall).
+  const size_t N = r.multistart.runs.size();
+  std::vector<double> sp, ep, fc(N), ic(N);
+  std::vector<std::int64_t> conv(N), order(N);
+  for (size_t i = 0; i < N; ++i) {
+    const auto& s = r.multistart.runs[i];
+    auto a = problem.to_linear(s.x_start.size() == n ? s.x_start : b.x_start);
+    auto e = problem.to_linear(s.x.size() == n ? s.x : b.x_start);
+    sp.insert(sp.end(), a.begin(), a.end());
+    ep.insert(ep.end(), e.begin(), e.end());
+    fc[i] = s.usable ? s.final_cost : NAN;
+    ic[i] = s.initial_cost;
+    conv[i] = s.converged;
+  }
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::int64_t a, std::int64_t c) {
+    if (std::isnan(fc[a])) return false;
+    if (std::isnan(fc[c])) return true;
+    return fc[a] < fc[c];
+  });
+  out.write("/fit/multistart/start_points", sp, pu, {N, n});
+  out.write("/fit/multistart/estimates", ep, pu, {N, n});
+  out.write("/fit/multistart/final_cost", fc, "1");
+  out.write("/fit/multistart/initial_cost", ic, "1");
+  out.write("/fit/multistart/converged", conv, "1");
+  out.write("/fit/multistart/waterfall_order", order, "1");
+  out.set_attribute("/fit/multistart", "best", static_cast<double>(r.multistart.best));
+  out.set_attribute("/fit/multistart", "sampling", spec.multistart.sampling == Sampling::Sobol ? std::string("sobol") : std::string("lhs"));
+  out.set_attribute("/fit/multistart", "seed", static_cast<double>(spec.multistart.seed));
+
+  // Targets at the optimum.
+  if (!spec.targets.features.empty()) {
+    std::vector<std::string> fn;
+    std::vector<double> tv, tol;
+    for (auto& f : spec.targets.features) {
+      fn.push_back(f.feature);
+      tv.push_back(f.value);
+      tol.push_back(f.tolerance);
+    }
+    out.write("/fit/targets/feature_names", fn);
+    out.write("/fit/targets/feature_values", tv, "feature units");
+    out.write("/fit/targets/feature_tolerances", tol, "feature units");
+  }
+
+  // Profiles.
+  for (auto& p : r.profiles) {
+    const std::string g = "/fit/profile/" + p.parameter;
+    auto names_ = problem.parameter_names();
+    size_t jp = static_cast<size_t>(std::find(names_.begin(), names_.end(), p.parameter) - names_.begin());
+    out.write(g + "/values", p.values, problem.parameter_unit(jp));
+    out.write(g + "/cost", p.cost, "1");
+    out.write(g + "/delta_chi2", p.delta_chi2, "1");
+    std::vector<std::int64_t> c(p.converged.begin(), p.converged.end());
+    out.write(g + "/converged", c, "1");
+    out.set_attribute(g, "threshold_95", 3.841458820694124);
+  }
+
+  // Kinematic comparison, best-fit trajectory, parameters, features.
+  if (b.usable) {
+    try {
+      auto comps = problem.kinematic_comparison(b.x.data());
+      for (size_t i = 0; i < comps.size(); ++i) {
+        const std::string suffix = i == 0 ? "" : "_" + std::to_string(i);
+        out.write("/fit/data" + suffix + "/time", comps[i].time_ms, "ms");
+        out.write("/fit/model" + suffix + "/time", comps[i].time_ms, "ms");
+        for (size_t c = 0; c < comps[i].channels.size(); ++c) {
+          out.write("/fit/data" + suffix + "/" + comps[i].channels[c], comps[i].data_deg[c], "deg");
+          out.write("/fit/model" + suffix + "/" + comps[i].channels[c], comps[i].model_deg[c], "deg");
+        }
+      }
+      solver::SolveResult tr = problem.simulate(b.x.data(), spec.output_dt_ms);
+      io::write_trajectory(out, problem.model(), tr);
+      io::write_parameters(out, problem.model(), problem.model_parameters(b.x.data()));
+      features::FeatureOptions fo = spec.problem.feature_options;
+      fo.discard_ms = spec.problem.discard_ms;
+      features::write_features_h5(out, features::compute_features(problem.model(), tr, fo));
+    } catch (const Error& e) {
+      out.set_attribute("/fit", "trajectory_note", std::string("best-fit trajectory not written: ") + e.what());
+    }
+  }
+}
+
+}  // namespace phasmid::fit

@@ -1,0 +1,34 @@
+#pragma once
+// A whole fit as `phasmid fit` runs it: multistart optimisation, uncertainty at the best
+// optimum, profile likelihoods; and the HDF5 layout of the result (docs/fit.md).
+#include <string>
+#include <vector>
+
+#include "fit/fit_config.hpp"
+#include "fit/uncertainty.hpp"
+
+namespace phasmid::io {
+class H5Writer;
+}
+
+namespace phasmid::fit {
+
+struct FitResult {
+  MultistartResult multistart;
+  Uncertainty uncertainty;
+  std::vector<Profile> profiles;
+  const FitSummary& best() const { return multistart.runs.at(multistart.best); }
+  std::vector<double> estimate;  // linear scale
+};
+
+// Never throws for a failing fit (the summaries say why); throws Error for bad input
+// (e.g. a profile of a parameter that is not estimated).
+FitResult run_fit(const FitProblem& problem, const FitSpec& spec);
+
+// Human summary: the optimiser's lines, then one line per parameter (estimate +- SE).
+std::string format_result(const FitProblem& problem, const FitResult& result);
+
+// /fit/... (docs/fit.md), /trajectory (best fit), /parameters, /features.
+void write_fit_h5(io::H5Writer& out, const FitProblem& problem, const FitSpec& spec, const FitResult& result);
+
+}  // namespace phasmid::fit

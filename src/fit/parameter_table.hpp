@@ -1,0 +1,42 @@
+#pragma once
+// Parameters of a fit (PEtab's parameter table): which named parameters are estimated, on
+// which scale (lin, log, log10), within which bounds, starting where. Bounds and nominal
+// values are always given on the linear scale (as in PEtab); the optimiser works on the
+// scaled values x = scale(theta) and Jacobians carry the chain rule d theta / d x.
+#include <string>
+#include <vector>
+
+namespace phasmid::fit {
+
+enum class Scale { Lin, Log, Log10 };
+Scale parse_scale(const std::string& s);  // "lin" | "log" | "log10"; throws Error otherwise
+const char* scale_name(Scale s);
+
+struct FitParameter {
+  std::string id;          // phasmid parameter name, or a data time-offset parameter
+  Scale scale = Scale::Lin;
+  double lower = 0.0;      // linear scale
+  double upper = 0.0;
+  double nominal = 0.0;    // start value (estimated) or fixed value (not estimated)
+  bool estimate = true;
+  std::string origin;      // "params.tsv:4" or "cfg.toml:12", for error messages
+};
+
+// theta <-> x and d theta / d x.
+double to_scaled(Scale s, double theta);
+double from_scaled(Scale s, double x);
+double dtheta_dx(Scale s, double x);
+
+// Reads a PEtab parameter table (tab-separated, header line naming the columns; required:
+// parameterId, parameterScale, lowerBound, upperBound, nominalValue, estimate; other columns
+// are ignored). Errors are one line naming file:line.
+std::vector<FitParameter> read_parameter_table(const std::string& path);
+std::vector<FitParameter> parse_parameter_table(const std::string& text, const std::string& origin);
+
+// Writes the same format (used for the synthetic data set and for `--parameters` round trips).
+std::string format_parameter_table(const std::vector<FitParameter>& params);
+
+// Checks one parameter for consistency (bounds ordered, nominal inside, log scales positive).
+void validate(const FitParameter& p);
+
+}  // namespace phasmid::fit

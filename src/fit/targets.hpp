@@ -1,0 +1,49 @@
+#pragma once
+// What a fit compares the model with (each becomes a block of weighted residuals):
+//  - FeatureTarget: a gait feature (period, phase durations and ratios, extremal angles)
+//    r = (feature - value) / tolerance; gradients from located events.
+//  - SwitchCondition: conditions (2.42) of Section 2.3.5: at the switch time T_sw the angle
+//    equals the extremal angle with zero velocity (and zero acceleration, i.e. the springs
+//    balance there); r = (angle - angle_deg)/tol, velocity/tol, acceleration/tol.
+//  - KinematicTarget: a recorded angle trajectory, r_k = (model(t_k + offset) - data_k) / sigma,
+//    with an optional time offset that is itself a fitted parameter.
+#include <string>
+#include <vector>
+
+#include "fit/kinematic_data.hpp"
+
+namespace phasmid::fit {
+
+struct FeatureTarget {
+  std::string feature;  // e.g. "middle.fti.period_ms" (see docs/features.md)
+  double value = 0;
+  double tolerance = 1;  // in feature units; residual = (feature - value) / tolerance
+  std::string origin;    // config file:line
+};
+
+struct SwitchCondition {
+  std::string channel;   // "<leg>.<joint>"
+  double time_ms = 0;    // T_sw
+  double angle_deg = 0;  // gamma_e
+  double angle_tolerance_deg = 1;
+  double velocity_tolerance_deg_s = 0;      // > 0: residual velocity / tol (target 0)
+  double acceleration_tolerance_deg_s2 = 0; // > 0: residual acceleration / tol (target 0), left limit at T_sw
+  std::string origin;
+};
+
+struct KinematicTarget {
+  KinematicData data;
+  double sigma_deg = 1;             // measurement noise; residual = (model - data) / sigma
+  double t_min_ms = 0;              // samples before this (model time) are ignored (transient)
+  std::string time_offset_parameter;  // empty: no offset; else a fit parameter id (ms), model time = data time + offset
+  std::string origin;
+};
+
+struct Targets {
+  std::vector<FeatureTarget> features;
+  std::vector<SwitchCondition> switches;
+  std::vector<KinematicTarget> kinematics;
+  bool empty() const { return features.empty() && switches.empty() && kinematics.empty(); }
+};
+
+}  // namespace phasmid::fit
