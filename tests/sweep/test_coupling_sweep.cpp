@@ -51,7 +51,9 @@ TEST(CouplingSweep, WeakInhibitionGivesTetrapodAndTripodStrongCouplingShiftsProt
   auto status = h.read_strings("/sweep/status");
   auto gait = h.read_strings("/sweep/gait_class");
   auto start = h.read_strings("/sweep/options/gait");
-  auto g = h.read_doubles("/sweep/parameters/coupling.front_to_middle.g");
+  auto pts = h.read_doubles("/sweep/points");  // 4 x 3: the three couplings of each point
+  std::vector<double> g;
+  for (size_t i = 0; i < 4; ++i) g.push_back(pts[i * 3]);
   for (size_t i = 0; i < 4; ++i) ASSERT_EQ(status[i], "ok") << "point " << i;
   // points: (tetrapod, weak), (tetrapod, strong), (tripod, weak), (tripod, strong)
   ASSERT_EQ(start, (std::vector<std::string>{"tetrapod", "tetrapod", "tripod", "tripod"}));
