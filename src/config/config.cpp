@@ -114,6 +114,8 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
     m = std::make_unique<model::MechanicalJointModel>(leg, joint, inc, first, 500, angle0, thc_table);
   } else if (type == "single_joint") {
     m = model::build_single_joint_model(leg, joint, thc_table);
+  } else if (type == "curve_walking") {
+    m = model::build_curve_walking_model();
   } else if (type == "leg" || type == "three_legs") {
     bool sw = false;
     if (const toml::node* n = mt->get("direction_switch")) {
@@ -143,7 +145,7 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
   } else {
     const toml::node* n = mt->get("type");
     throw Error((n ? where(cfg, *n) : cfg.path) + ": unknown model type '" + type +
-                "' (expected single_joint, mechanical_joint, leg or three_legs)");
+                "' (expected single_joint, mechanical_joint, leg, three_legs or curve_walking)");
   }
 
   if (const toml::table* pt = cfg.table["parameters"].as_table()) {
@@ -181,10 +183,11 @@ SimulationSettings simulation_settings(const Config& cfg) {
   get("max_step_ms", s.solver.max_step_ms, 0);
   if (const toml::node* n = st->get("linear_solver")) {
     std::string v = n->value<std::string>().value_or("");
-    if (v == "dense") s.solver.linear_solver = solver::LinearSolverKind::Dense;
+    if (v == "auto") s.solver.linear_solver = solver::LinearSolverKind::Auto;
+    else if (v == "dense") s.solver.linear_solver = solver::LinearSolverKind::Dense;
     else if (v == "band") s.solver.linear_solver = solver::LinearSolverKind::Band;
     else if (v == "klu") s.solver.linear_solver = solver::LinearSolverKind::Klu;
-    else throw Error(where(cfg, *n) + ": linear_solver must be \"dense\", \"band\" or \"klu\"");
+    else throw Error(where(cfg, *n) + ": linear_solver must be \"auto\", \"dense\", \"band\" or \"klu\"");
   }
   return s;
 }

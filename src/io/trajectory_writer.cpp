@@ -1,6 +1,10 @@
 #include "io/trajectory_writer.hpp"
 
+#include "model/body_kinematics.hpp"
+
+#include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace phasmid::io {
 
@@ -22,6 +26,56 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
     const double thr_rad = m.parameters().value(thr) * M_PI / 180.0;
     for (size_t k = 0; k < n_out; ++k) col[k] = r.state(k, a.angle_state) < thr_rad ? 0.0 : 1.0;
     w.write("/trajectory/footfall/" + a.leg, col, "1");
+  }
+  // Six-leg pattern of the three-leg model (Section 2.5.4): the left side L1-L3 is the
+  // simulated front, middle, hind leg; the right side R1-R3 the same pattern delayed by
+  // contralateral.lag * gait.period_ms (linear interpolation; the first value before that).
+  if (m.parameters().contains("contralateral.lag") && m.parameters().contains("gait.period_ms")) {
+    const double shift = m.parameters().value("contralateral.lag") * m.parameters().value("gait.period_ms");
+    auto delayed = [&](const std::vector<double>& x) {
+      std::vector<double> y(n_out);
+      for (size_t k = 0; k < n_out; ++k) {
+        double t = r.t[k] - shift;
+        if (t <= r.t.front()) { y[k] = x.front(); continue; }
+        size_t j = std::upper_bound(r.t.begin(), r.t.end(), t) - r.t.begin();
+        double w = (t - r.t[j - 1]) / (r.t[j] - r.t[j - 1]);
+        y[k] = (1 - w) * x[j - 1] + w * x[j];
+      }
+      return y;
+    };
+    const std::map<std::string, std::string> side = {{"front", "1"}, {"middle", "2"}, {"hind", "3"}};
+    for (const auto& a : m.angles()) {
+      auto it = side.find(a.leg);
+      if (it == side.end()) continue;
+      std::vector<double> x(n_out);
+      for (size_t k = 0; k < n_out; ++k) x[k] = r.state(k, a.angle_state) * 180.0 / M_PI;
+      w.write("/trajectory/angles/L" + it->second + "/" + a.joint, x, "deg");
+      w.write("/trajectory/angles/R" + it->second + "/" + a.joint, delayed(x), "deg");
+      const std::string thr = a.leg + ".coupling.beta_thr_pr";
+      if (a.joint == "ctr" && m.parameters().contains(thr)) {
+        for (auto& v : x) v = v < m.parameters().value(thr) ? 0.0 : 1.0;
+        w.write("/trajectory/footfall/L" + it->second, x, "1");
+        auto d = delayed(x);
+        for (auto& v : d) v = v < 0.5 ? 0.0 : 1.0;
+        w.write("/trajectory/footfall/R" + it->second, d, "1");
+      }
+    }
+  }
+  // Curve walking (Section 3.2.3): body path from the two middle legs, docs/walking_model.md.
+  if (m.parameters().contains("body.reach_mm") && m.parameters().contains("L2.coupling.beta_thr_pr")) {
+    std::map<std::string, std::vector<double>> a;
+    for (const auto& ch : m.angles()) {
+      if (ch.leg != "L2" && ch.leg != "R2") continue;
+      std::vector<double> x(n_out);
+      for (size_t k = 0; k < n_out; ++k) x[k] = r.state(k, ch.angle_state) * 180.0 / M_PI;
+      a[ch.leg + "." + ch.joint] = x;
+    }
+    model::BodyPath bp = model::integrate_body_path(
+        r.t, a["L2.thc"], a["L2.ctr"], a["R2.thc"], a["R2.ctr"], m.parameters().value("L2.coupling.beta_thr_pr"),
+        m.parameters().value("body.reach_mm"), m.parameters().value("body.half_width_mm"));
+    w.write("/body/x", bp.x_mm, "mm");
+    w.write("/body/y", bp.y_mm, "mm");
+    w.write("/body/heading", bp.heading_deg, "deg");
   }
   for (size_t i = 0; i < m.num_states(); ++i) {
     for (size_t k = 0; k < n_out; ++k) col[k] = r.state(k, i);

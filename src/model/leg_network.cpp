@@ -71,6 +71,40 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
   m.add_modulation({L.fe.sens_exc, g_fco, {below(L.beta_state, beta_fe, L.width), above(L.gamma_state, gamma_thr, L.width)}, g_fe});
   m.add_modulation({L.ld.sens_exc, g_cs, {after(cs_on)}, cs_base});
 
+  if (o.ld_release_ms >= 0) {
+    // "central inhibition of the levator CPG neuron in the respective leg, i.e. forcing the
+    // depressor CPG neuron to be active and then resetting the CPG at proper times" (2.5.4).
+    const std::string h = leg + ".ld_hold.";
+    NapIdx q = c.sens_inh;
+    q.E_app = m.parameters().index("interneuron.excitatory.E_app");
+    size_t drive = def(h + "drive", 5.0, "nS", kChoice, "central drive of the levator-inhibiting command neuron while holding", 0);
+    size_t zero = def(h + "off", 0.0, "nS", kChoice, "its drive when released", 0);
+    q.g_app = drive;
+    size_t hold = m.add_nap_neuron(leg + ".ld_hold", q, -30, 0.3);
+    SynapseIdx si;
+    std::string cls = "syn.command_inh.";
+    if (m.parameters().contains(cls + "g")) {
+      si = {m.parameters().index(cls + "g"), m.parameters().index(cls + "V_h"), m.parameters().index(cls + "gamma"),
+            m.parameters().index(cls + "E")};
+    } else {
+      si.g = def(cls + "g", 5.0, "nS", kChoice, "inhibition by central command neurons (sideward stop, levator hold)", 0);
+      si.V_h = def(cls + "V_h", -43, "mV", std::string(kChoice) + ": as Table A.4", "half-activation");
+      si.gamma = def(cls + "gamma", -10, "1/mV", std::string(kChoice) + ": as Table A.4", "slope");
+      si.E = def(cls + "E", -80, "mV", std::string(kChoice) + ": as Table A.4", "reversal (inhibitory)");
+    }
+    m.add_synapse(hold, L.ld.cpg_inc, si);
+    size_t rel = def(leg + ".command.ld_release_ms", o.ld_release_ms, "ms",
+                     o.ld_release_source.empty() ? std::string(kChoice) : o.ld_release_source,
+                     "end of the central levator inhibition: the leg's first lift-off (start time)", 0);
+    size_t hold2 = def(leg + ".command.ld_hold_ms", kNever, "ms", "Knops 2013, Section 3.3 / Figs. 3.24-3.27",
+                       "gait transition: central levator inhibition starts again (after ld_release_ms)", 0);
+    size_t rel2 = def(leg + ".command.ld_release2_ms", kNever, "ms", "Knops 2013, Section 3.3 / Figs. 3.24-3.27",
+                      "gait transition: levator released again (reset; after ld_hold_ms)", 0);
+    m.add_modulation({hold, zero, {after(rel)}, drive});
+    m.add_modulation({hold, drive, {after(hold2)}, zero});
+    m.add_modulation({hold, zero, {after(rel2)}, drive});
+  }
+
   if (o.direction_switch) {
     // Fig. 3.11: SF and SB, a mutually inhibitory pair driven centrally. SF presynaptically
     // inhibits the crossed CPG -> IN connections of the PR system, SB the parallel ones.
@@ -115,10 +149,16 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
     q.g_app = zero;
     size_t stop = m.add_nap_neuron(leg + ".switch.stop", q, -65, 0.9);
     SynapseIdx si;
-    si.g = def("syn.command_inh.g", 5.0, "nS", kChoice, "inhibition of SF and SB by the sideward command neuron", 0);
-    si.V_h = def("syn.command_inh.V_h", -43, "mV", std::string(kChoice) + ": as Table A.4", "half-activation");
-    si.gamma = def("syn.command_inh.gamma", -10, "1/mV", std::string(kChoice) + ": as Table A.4", "slope");
-    si.E = def("syn.command_inh.E", -80, "mV", std::string(kChoice) + ": as Table A.4", "reversal (inhibitory)");
+    const std::string cls = "syn.command_inh.";
+    if (m.parameters().contains(cls + "g")) {
+      si = {m.parameters().index(cls + "g"), m.parameters().index(cls + "V_h"), m.parameters().index(cls + "gamma"),
+            m.parameters().index(cls + "E")};
+    } else {
+      si.g = def(cls + "g", 5.0, "nS", kChoice, "inhibition by central command neurons (sideward stop, levator hold)", 0);
+      si.V_h = def(cls + "V_h", -43, "mV", std::string(kChoice) + ": as Table A.4", "half-activation");
+      si.gamma = def(cls + "gamma", -10, "1/mV", std::string(kChoice) + ": as Table A.4", "slope");
+      si.E = def(cls + "E", -80, "mV", std::string(kChoice) + ": as Table A.4", "reversal (inhibitory)");
+    }
     m.add_synapse(stop, L.sf, si);
     m.add_synapse(stop, L.sb, si);
     m.add_modulation({stop, drive, {after(t_side)}, zero});
@@ -129,6 +169,13 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
     size_t s_flx = def(leg + ".sideward.g_app_flx", 0.120, "nS", "Knops 2013, Section 3.1.2 / Fig. 3.4", "flexor CPG drive during sideward stepping", 0);
     m.add_modulation({L.fe.cpg_dec, s_ext, {after(t_side)}, ext});
     m.add_modulation({L.fe.cpg_inc, s_flx, {after(t_side)}, flx});
+    // End of sideward stepping (curve walking, Section 3.2.3): everything back to forward.
+    size_t t_side_end = def(leg + ".command.sideward_end_ms", kNever, "ms", "Knops 2013, Section 3.2.3 (curve walking)",
+                            "central command: back to forward stepping after sideward_ms", 0);
+    m.add_modulation({stop, zero, {after(t_side_end)}, drive});
+    m.add_modulation({L.sf, drive, {after(t_side_end)}, zero});
+    m.add_modulation({L.fe.cpg_dec, ext, {after(t_side_end)}, s_ext});
+    m.add_modulation({L.fe.cpg_inc, flx, {after(t_side_end)}, s_flx});
   }
   return L;
 }
@@ -160,19 +207,26 @@ std::unique_ptr<NetworkModel> build_three_leg_model(const ThreeLegOptions& o) {
   const char* k33 = "Knops 2013, Section 3.3";
   const bool tripod = o.gait == "tripod";
   if (!tripod && o.gait != "tetrapod") throw Error("unknown gait '" + o.gait + "' (expected tetrapod or tripod)");
-  const double T = tripod ? 442.0 : 510.0, start = 200.0;
-  // LD start times (Section 2.5.4): tetrapod hind, middle +T/3, front +2T/3 (Fig. 3.21);
-  // tripod middle first, front and hind +T/2 together (Fig. 3.23).
+  const double T = tripod ? 442.0 : 510.0, start = 1500.0;
+  // Start times (Section 2.5.4): each leg is held in stance by central inhibition of its
+  // levator CPG (CS input on at 100 ms for all legs) and released at its start time: tetrapod
+  // hind first, middle +T/3, front +2T/3 (Fig. 3.21); tripod middle first, front and hind
+  // +T/2 together (Fig. 3.23). Releasing from a held state makes the first lift-off follow the
+  // release at the same delay in every leg, so the lags are those of the start times.
   std::vector<std::string> legs = {"front", "middle", "hind"};
-  double cs_on[3];
+  double release[3];
   if (tripod) {
-    cs_on[1] = start;
-    cs_on[0] = cs_on[2] = start + T / 2;
+    release[1] = start;
+    release[0] = release[2] = start + T / 2;
   } else {
-    cs_on[2] = start;
-    cs_on[1] = start + T / 3;
-    cs_on[0] = start + 2 * T / 3;
+    release[2] = start;
+    release[1] = start + T / 3;
+    release[0] = start + 2 * T / 3;
   }
+  def("gait.period_ms", T, "ms", std::string(k33) + " (T_4pod = 510 ms, T_3pod = 442 ms)",
+      "cycle period of the gait: spacing of the start times and of the contralateral copy", 1);
+  def("contralateral.lag", tripod ? 0.5 : 1.0 / 3, "1", "Knops 2013, Sections 2.5.4 and 3.3 (33% tetrapod, 50% tripod)",
+      "phase lag of the right side (R1-R3) behind the left (L1-L3) in the six-leg output", 0, 1);
   std::vector<LegNetwork> L;
   for (int i = 0; i < 3; ++i) {
     LegOptions lo;
@@ -181,14 +235,32 @@ std::unique_ptr<NetworkModel> build_three_leg_model(const ThreeLegOptions& o) {
     lo.g_pr_swing = 1.6;
     lo.g_pr_stance = 3.3;
     lo.g_pr_source = "Knops 2013, Section 3.3 (IN16: 1.6 -> 3.3 nS)";
-    lo.cs_on_ms = cs_on[i];
-    lo.cs_on_source = std::string("Knops 2013, Section 2.5.4 (LD start times, lag ") + (tripod ? "1/2" : "1/3") +
-                      " of the period)";
+    lo.cs_on_ms = 100.0;
+    lo.cs_on_source = std::string(kChoice) + ": CS input on for all legs; the start times are ld_release_ms";
+    lo.ld_release_ms = release[i];
+    lo.ld_release_source = std::string("Knops 2013, Section 2.5.4 (start times staggered by ") +
+                           (tripod ? "1/2" : "1/3") + " of the period; first release at 1500 ms, a choice)";
     L.push_back(add_leg_network(*m, c, legs[i], lo));
-    if (tripod) {  // Section 3.3: g_app3 0.23 -> 0.26, g_app4 0.1843 -> 0.17 (442 ms)
-      m->parameters().set(legs[i] + ".ctr.cpg_lev.g_app", 0.26, "tripod (Knops 2013, Section 3.3)");
-      m->parameters().set(legs[i] + ".ctr.cpg_dep.g_app", 0.17, "tripod (Knops 2013, Section 3.3)");
+    if (tripod) {
+      // Section 3.3 changes g_app3 0.23 -> 0.26, g_app4 0.1843 -> 0.17 for a 1:1 LD relation
+      // and 442 ms. In phasmid's LD (docs/walking_model.md) 0.31 / 0.17 nS give 224 : 222 ms
+      // (446 ms) in isolation.
+      m->parameters().set(legs[i] + ".ctr.cpg_lev.g_app", 0.31, "tripod");
+      m->parameters().set(legs[i] + ".ctr.cpg_dep.g_app", 0.17, "tripod");
     }
+  }
+  // Gait transitions (Section 3.3, Figs. 3.24-3.27): at gait.switch_ms the LD drives of all
+  // legs change to the other gait's values; together with each leg's levator hold
+  // (<leg>.command.ld_hold_ms) and reset (<leg>.command.ld_release2_ms) this re-phases the legs.
+  size_t t_switch = def("gait.switch_ms", kNever, "ms", "Knops 2013, Section 3.3 (gait transitions)",
+                        "central command: LD drives change to the other gait's values", 0);
+  size_t g_lev2 = def("gait.switch.g_app_lev", tripod ? 0.34 : 0.31, "nS",
+                      "the other gait's levator drive (docs/walking_model.md)", "levator CPG drive after gait.switch_ms", 0);
+  size_t g_dep2 = def("gait.switch.g_app_dep", tripod ? 0.14 : 0.17, "nS",
+                      "the other gait's depressor drive (docs/walking_model.md)", "depressor CPG drive after gait.switch_ms", 0);
+  for (int i = 0; i < 3; ++i) {
+    m->add_modulation({L[i].ld.cpg_inc, g_lev2, {after(t_switch)}, m->parameters().index(legs[i] + ".ctr.cpg_lev.g_app")});
+    m->add_modulation({L[i].ld.cpg_dec, g_dep2, {after(t_switch)}, m->parameters().index(legs[i] + ".ctr.cpg_dep.g_app")});
   }
   // Intersegmental couplings (Section 2.5.4, Fig. 2.15): beta of each leg to the next caudal
   // PR sensory IN, front -> middle -> hind -> front. While the source leg has ground contact
@@ -206,6 +278,28 @@ std::unique_ptr<NetworkModel> build_three_leg_model(const ThreeLegOptions& o) {
     m->add_modulation({L[j].pr.sens_exc, g,
                        {below(L[i].beta_state, L[i].beta_thr_pr, L[i].width), above(L[j].beta_state, L[j].beta_thr_pr, L[j].width)}});
   }
+  return m;
+}
+
+std::unique_ptr<NetworkModel> build_curve_walking_model() {
+  // Section 3.2.3: two middle legs (L2, R2; Table A.17 ThC as in Knops et al. 2012) with the
+  // direction switch, alternating with half a period; the other legs are passive supports.
+  auto m = std::make_unique<NetworkModel>("curve_walking");
+  NeuronClasses c = define_neuron_classes(*m);
+  Def def{*m};
+  for (const char* leg : {"L2", "R2"}) {
+    LegOptions o;
+    o.thc_set = "A.17";
+    o.direction_switch = true;
+    o.cs_on_ms = 100.0;
+    o.cs_on_source = std::string(kChoice) + ": CS input on; the start time is ld_release_ms";
+    o.ld_release_ms = std::string(leg) == "L2" ? 1500.0 : 1755.0;
+    o.ld_release_source = "Knops 2013, Section 3.2.3 (left and right middle legs alternate with half a period, 255 ms)";
+    add_leg_network(*m, c, leg, o);
+  }
+  def("body.reach_mm", 15.0, "mm", std::string(kChoice) + ": horizontal distance ThC joint - foot (femur 13 mm, tibia 12 mm, Table A.13, projected)",
+      "length of the leg's horizontal lever in the kinematic body model", 0);
+  def("body.half_width_mm", 2.0, "mm", std::string(kChoice) + ": half the mesothorax width", "lateral offset of the ThC joints", 0);
   return m;
 }
 

@@ -23,6 +23,11 @@ struct LegOptions {
   std::string g_pr_source = "Knops 2013, Section 3.2";
   double cs_on_ms = 200.0;        // end of the initial transient: CS input to LD switched on
   std::string cs_on_source;
+  // Central inhibition of the levator CPG (Section 2.5.4): a command neuron holds the leg in
+  // stance from t = 0 until ld_release_ms (the leg's start time), and again from ld_hold_ms to
+  // ld_release2_ms (gait transitions). Negative ld_release_ms: no hold network.
+  double ld_release_ms = -1.0;
+  std::string ld_release_source;
 };
 
 struct LegNetwork {
@@ -48,6 +53,10 @@ struct ThreeLegOptions {
   bool direction_switch = false;
 };
 std::unique_ptr<NetworkModel> build_three_leg_model(const ThreeLegOptions& o);
+
+// type "curve_walking" (Section 3.2.3): left and right middle legs L2, R2 with direction
+// switches, half a period apart, plus the body parameters of body_kinematics.hpp.
+std::unique_ptr<NetworkModel> build_curve_walking_model();
 // "inhibitory" | "excitatory" | "mixed" (Fig. 3.19 C: hind -> front excitatory, others inhibitory)
 void set_coupling_variant(ThreeLegOptions& o, const std::string& variant);
 

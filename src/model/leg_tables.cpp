@@ -29,7 +29,18 @@ JointNaming joint_naming(JointType j) {
   throw Error("bad joint");
 }
 
-JointTable joint_table(const std::string& leg, JointType j, const std::string& thc_set) {
+// Six-leg names (L1..R3, DESIGN.md §3) use the tables of their segment.
+static std::string segment_of(const std::string& leg) {
+  if (leg.size() == 2 && (leg[0] == 'L' || leg[0] == 'R')) {
+    if (leg[1] == '1') return "front";
+    if (leg[1] == '2') return "middle";
+    if (leg[1] == '3') return "hind";
+  }
+  return leg;
+}
+
+JointTable joint_table(const std::string& leg_name, JointType j, const std::string& thc_set) {
+  const std::string leg = segment_of(leg_name);
   // {min, max, inertia, k_inc(inc phase), k_dec(inc phase), k_inc(dec phase), k_dec(dec phase), b_v, source}
   if (leg == "middle") {
     switch (j) {
@@ -52,10 +63,11 @@ JointTable joint_table(const std::string& leg, JointType j, const std::string& t
       case JointType::Thc: return {90, 145, 2.38, 1108.5, 34.419, 765.39, 698.48, 107.1, "Knops 2013, Table A.23"};
     }
   }
-  throw Error("unknown leg '" + leg + "' (expected front, middle or hind)");
+  throw Error("unknown leg '" + leg + "' (expected front, middle, hind or L1..R3)");
 }
 
-SegmentTable segment_table(const std::string& leg) {
+SegmentTable segment_table(const std::string& leg_name) {
+  const std::string leg = segment_of(leg_name);
   if (leg == "front") return {0.0099, 16, 0.0039, 16};
   if (leg == "middle") return {0.0073, 13, 0.0021, 12};
   if (leg == "hind") return {0.0084, 15, 0.0034, 15};

@@ -248,7 +248,9 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   int bw = model_.jacobian_half_bandwidth();
   bool band = options_.linear_solver == LinearSolverKind::Band && bw >= 0;
   // KLU needs an exact Jacobian function (a difference quotient is only available for dense/band).
-  const bool klu = options_.linear_solver == LinearSolverKind::Klu && options_.jacobian == JacobianKind::AutoDiff;
+  const bool want_klu = options_.linear_solver == LinearSolverKind::Klu ||
+                        (options_.linear_solver == LinearSolverKind::Auto && n > kDenseMaxStates);
+  const bool klu = want_klu && options_.jacobian == JacobianKind::AutoDiff;
   if (adams) {
     h.NLS = SUNNonlinSol_FixedPoint(h.y, 0, h.ctx);
     check_flag(CVodeSetNonlinearSolver(h.mem, h.NLS), "CVodeSetNonlinearSolver");

@@ -9,7 +9,10 @@
 
 namespace phasmid::solver {
 
-enum class LinearSolverKind { Dense, Band, Klu };
+// Auto: dense up to kDenseMaxStates states, KLU (sparse) above: measured 71.7 s (dense) vs
+// 20.7 s (KLU) for 9 s of one leg (78 states); equal step counts (docs/benchmarks.md).
+enum class LinearSolverKind { Auto, Dense, Band, Klu };
+constexpr size_t kDenseMaxStates = 40;
 enum class JacobianKind { AutoDiff, FiniteDifference };
 enum class SensitivityMethod { Staggered, Simultaneous };
 // BDF + Newton (stiff) or Adams-Moulton + fixed-point iteration (non-stiff: no Jacobian, no
@@ -22,7 +25,7 @@ struct SolverOptions {
   long max_steps = 1000000;          // per output interval
   double max_step_ms = 0.0;          // 0: no limit
   IntegratorKind integrator = IntegratorKind::Bdf;
-  LinearSolverKind linear_solver = LinearSolverKind::Dense;
+  LinearSolverKind linear_solver = LinearSolverKind::Auto;
   JacobianKind jacobian = JacobianKind::AutoDiff;
   SensitivityMethod sensitivity_method = SensitivityMethod::Staggered;
   bool sensitivity_error_control = true;

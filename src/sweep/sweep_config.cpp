@@ -1,0 +1,326 @@
+#include "sweep/sweep_config.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "common/error.hpp"
+#include "sweep/design.hpp"
+
+namespace phasmid::sweep {
+using config::number;
+using config::where;
+
+std::vector<std::string> SweepSpec::names() const {
+  std::vector<std::string> v;
+  for (auto& p : parameters) v.push_back(p.name);
+  return v;
+}
+std::vector<std::string> SweepSpec::units() const {
+  std::vector<std::string> v;
+  for (auto& p : parameters) v.push_back(p.unit);
+  return v;
+}
+
+namespace {
+constexpr std::size_t kMaxPoints = 10'000'000;
+
+void check_keys(const config::Config& cfg, const toml::table& t, const std::string& section,
+                const std::set<std::string>& allowed) {
+  for (auto& [k, v] : t)
+    if (!allowed.count(std::string(k.str()))) {
+      std::string list;
+      for (auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      throw Error(where(cfg, v) + ": unknown key '" + std::string(k.str()) + "' in [" + section + "] (expected " +
+                  list + ")");
+    }
+}
+
+std::size_t positive_count(const config::Config& cfg, const toml::node& n, const std::string& key) {
+  auto v = n.value_exact<int64_t>();
+  if (!v || *v < 1) throw Error(where(cfg, n) + ": '" + key + "' must be a positive integer");
+  if (static_cast<std::size_t>(*v) > kMaxPoints)
+    throw Error(where(cfg, n) + ": '" + key + "' is too large (at most " + std::to_string(kMaxPoints) + ")");
+  return static_cast<std::size_t>(*v);
+}
+
+void check_admissible(const config::Config& cfg, const toml::node& n, const model::Parameter& p, double v) {
+  if (!std::isfinite(v) || v < p.lower || v > p.upper) {
+    std::ostringstream os;
+    os << where(cfg, n) << ": impossible value " << v << " for parameter '" << p.name << "' (allowed range ["
+       << p.lower << ", " << p.upper << "] " << p.unit << ")";
+    throw Error(os.str());
+  }
+}
+
+double map_unit(const SweptParameter& p, double u) {
+  double x = p.log_scale ? std::exp(std::log(p.lower) + u * (std::log(p.upper) - std::log(p.lower)))
+                         : p.lower + u * (p.upper - p.lower);
+  return std::min(std::max(x, p.lower), p.upper);  // rounding never leaves [lower, upper]
+}
+void parse_options(const config::Config& cfg, const toml::table& st, SweepSpec& spec) {
+  const toml::node* on = st.get("option");
+  if (!on) return;
+  const toml::array* arr = on->as_array();
+  if (!arr || arr->empty() || !arr->is_array_of_tables())
+    throw Error(where(cfg, *on) + ": 'sweep.option' must be an array of tables ([[sweep.option]])");
+  std::set<std::string> seen;
+  for (const toml::node& el : *arr) {
+    const toml::table& t = *el.as_table();
+    check_keys(cfg, t, "[sweep.option]", {"name", "values"});
+    const toml::node* name = t.get("name");
+    if (!name || !name->is_string()) throw Error(where(cfg, el) + ": [[sweep.option]] needs name = \"<[model] key>\"");
+    SweptOption o;
+    o.name = *name->value<std::string>();
+    if (o.name == "type") throw Error(where(cfg, *name) + ": the model type cannot be swept (one model kind per sweep)");
+    if (!seen.insert(o.name).second) throw Error(where(cfg, *name) + ": option '" + o.name + "' swept twice");
+    const toml::node* values = t.get("values");
+    const toml::array* va = values ? values->as_array() : nullptr;
+    if (!va || va->empty())
+      throw Error(where(cfg, values ? *values : el) + ": [[sweep.option]] needs values = [...] (strings, booleans or numbers)");
+    for (const toml::node& v : *va) {
+      std::string label;
+      if (auto s = v.value_exact<std::string>()) label = *s;
+      else if (auto b = v.value_exact<bool>()) label = *b ? "true" : "false";
+      else if (auto i = v.value_exact<int64_t>()) label = std::to_string(*i);
+      else if (auto d = v.value_exact<double>()) {
+        std::ostringstream os;
+        os << *d;
+        label = os.str();
+      } else
+        throw Error(where(cfg, v) + ": option values must be strings, booleans or numbers");
+      o.labels.push_back(label);
+      o.where.push_back(where(cfg, v));
+    }
+    spec.n_combos *= o.labels.size();
+    spec.options.push_back(std::move(o));
+  }
+}
+}  // namespace
+
+SweepSpec parse_sweep(const config::Config& cfg, const model::ParameterSet& params,
+                      const config::SimulationSettings& sim) {
+  const toml::node* sn = cfg.table.get("sweep");
+  if (!sn) throw Error(cfg.path + ": missing [sweep] section (docs/sweep.md)");
+  const toml::table* st = sn->as_table();
+  if (!st) throw Error(where(cfg, *sn) + ": 'sweep' must be a table ([sweep])");
+  check_keys(cfg, *st, "sweep", {"design", "points", "seed", "t_end_ms", "discard_ms", "parameter", "option"});
+
+  SweepSpec spec;
+  spec.design_name = "grid";
+  if (const toml::node* n = st->get("design")) {
+    auto v = n->value<std::string>();
+    if (!v || (*v != "grid" && *v != "lhs" && *v != "sobol"))
+      throw Error(where(cfg, *n) + ": design must be \"grid\", \"lhs\" or \"sobol\"");
+    spec.design_name = *v;
+  }
+  spec.design = spec.design_name == "grid" ? Design::Grid : spec.design_name == "lhs" ? Design::Lhs : Design::Sobol;
+  const toml::node* points_node = st->get("points");
+  std::size_t points = points_node ? positive_count(cfg, *points_node, "points") : 0;
+  if (const toml::node* n = st->get("seed")) {
+    auto v = n->value_exact<int64_t>();
+    if (!v || *v < 0) throw Error(where(cfg, *n) + ": 'seed' must be a non-negative integer");
+    spec.seed = static_cast<std::uint64_t>(*v);
+  }
+
+  spec.t_end_ms = sim.t_end_ms;
+  spec.discard_ms = sim.discard_ms;
+  if (const toml::node* n = st->get("t_end_ms")) {
+    spec.t_end_ms = number(cfg, *n, "t_end_ms");
+    if (!(spec.t_end_ms > 0)) throw Error(where(cfg, *n) + ": 't_end_ms' must be > 0");
+  }
+  if (const toml::node* n = st->get("discard_ms")) {
+    spec.discard_ms = number(cfg, *n, "discard_ms");
+    if (spec.discard_ms < 0) throw Error(where(cfg, *n) + ": 'discard_ms' must be >= 0");
+  }
+  if (spec.discard_ms >= spec.t_end_ms) {
+    const toml::node* n = st->get("discard_ms") ? st->get("discard_ms") : st->get("t_end_ms");
+    throw Error((n ? where(cfg, *n) : where(cfg, *sn)) + ": discard_ms (" + std::to_string(spec.discard_ms) +
+                ") must be less than t_end_ms (" + std::to_string(spec.t_end_ms) + ")");
+  }
+
+  const toml::node* pn = st->get("parameter");
+  const toml::array* arr = pn ? pn->as_array() : nullptr;
+  if (!pn) throw Error(where(cfg, *sn) + ": [sweep] needs at least one [[sweep.parameter]] table");
+  if (!arr || arr->empty() || !arr->is_array_of_tables())
+    throw Error(where(cfg, *pn) + ": 'sweep.parameter' must be an array of tables ([[sweep.parameter]])");
+
+  std::set<std::string> seen;
+  auto lookup = [&](const toml::node& name_node, const std::string& name) -> const model::Parameter& {
+    if (!params.contains(name)) {
+      try {
+        params.index(name);
+      } catch (const Error& e) {
+        throw Error(where(cfg, name_node) + ": " + e.what());
+      }
+    }
+    if (!seen.insert(name).second) throw Error(where(cfg, name_node) + ": parameter '" + name + "' swept twice");
+    return params.at(name);
+  };
+  std::size_t n_axes = 0;
+  for (const toml::node& el : *arr) {
+    const toml::table& t = *el.as_table();
+    check_keys(cfg, t, "[sweep.parameter]", {"name", "names", "values", "lower", "upper", "points", "scale"});
+    if (const toml::node* names = t.get("names")) {
+      // Linked values: one grid axis whose rows set several parameters together.
+      if (spec.design != Design::Grid)
+        throw Error(where(cfg, *names) + ": linked 'names' are for design = \"grid\"");
+      if (t.get("name") || t.get("lower") || t.get("upper") || t.get("points") || t.get("scale"))
+        throw Error(where(cfg, *names) + ": 'names' takes only 'values' (one row of values per grid step)");
+      const toml::array* na = names->as_array();
+      if (!na || na->empty()) throw Error(where(cfg, *names) + ": 'names' must be a non-empty array of parameter names");
+      const std::size_t first = spec.parameters.size();
+      for (const toml::node& n : *na) {
+        if (!n.is_string()) throw Error(where(cfg, n) + ": 'names' must hold parameter names (strings)");
+        SweptParameter sp;
+        sp.name = *n.value<std::string>();
+        sp.unit = lookup(n, sp.name).unit;
+        sp.axis = n_axes;
+        spec.parameters.push_back(std::move(sp));
+      }
+      const toml::node* values = t.get("values");
+      const toml::array* rows = values ? values->as_array() : nullptr;
+      if (!rows || rows->empty())
+        throw Error(where(cfg, values ? *values : el) + ": 'names' needs values = [[...], ...], one row per grid step");
+      for (const toml::node& row : *rows) {
+        const toml::array* ra = row.as_array();
+        if (!ra || ra->size() != na->size())
+          throw Error(where(cfg, row) + ": each row of 'values' needs " + std::to_string(na->size()) + " numbers");
+        for (std::size_t c = 0; c < ra->size(); ++c) {
+          SweptParameter& sp = spec.parameters[first + c];
+          double x = number(cfg, *ra->get(c), sp.name);
+          check_admissible(cfg, *ra->get(c), params.at(sp.name), x);
+          sp.values.push_back(x);
+        }
+      }
+      ++n_axes;
+      continue;
+    }
+    SweptParameter sp;
+    sp.axis = n_axes++;
+    const toml::node* name = t.get("name");
+    if (!name || !name->is_string())
+      throw Error(where(cfg, el) + ": [[sweep.parameter]] needs name = \"...\" (or names = [...] with rows of values)");
+    sp.name = *name->value<std::string>();
+    const model::Parameter& mp = lookup(*name, sp.name);
+    sp.unit = mp.unit;
+
+    if (const toml::node* n = t.get("scale")) {
+      auto v = n->value<std::string>();
+      if (!v || (*v != "lin" && *v != "log")) throw Error(where(cfg, *n) + ": scale must be \"lin\" or \"log\"");
+      sp.log_scale = *v == "log";
+    }
+    const toml::node* values = t.get("values");
+    const toml::node* lower = t.get("lower");
+    const toml::node* upper = t.get("upper");
+    const toml::node* pts = t.get("points");
+    if (values) {
+      if (spec.design != Design::Grid)
+        throw Error(where(cfg, *values) + ": 'values' is for design = \"grid\"; " + spec.design_name +
+                    " needs lower and upper");
+      if (lower || upper || pts || t.get("scale"))
+        throw Error(where(cfg, *values) + ": give either 'values' or 'lower'/'upper', not both");
+      const toml::array* va = values->as_array();
+      if (!va || va->empty()) throw Error(where(cfg, *values) + ": 'values' must be a non-empty array of numbers");
+      for (const toml::node& v : *va) {
+        double x = number(cfg, v, sp.name);
+        check_admissible(cfg, v, mp, x);
+        sp.values.push_back(x);
+      }
+    } else {
+      if (!lower || !upper)
+        throw Error(where(cfg, el) + ": parameter '" + sp.name + "' needs 'values' or both 'lower' and 'upper'");
+      sp.lower = number(cfg, *lower, "lower");
+      sp.upper = number(cfg, *upper, "upper");
+      check_admissible(cfg, *lower, mp, sp.lower);
+      check_admissible(cfg, *upper, mp, sp.upper);
+      if (!(sp.lower < sp.upper)) throw Error(where(cfg, *upper) + ": 'upper' must be greater than 'lower'");
+      if (sp.log_scale && !(sp.lower > 0)) throw Error(where(cfg, *lower) + ": scale = \"log\" needs lower > 0");
+      if (spec.design == Design::Grid) {
+        std::size_t n = pts ? positive_count(cfg, *pts, "points") : points;
+        if (n == 0)
+          throw Error(where(cfg, el) + ": grid parameter '" + sp.name +
+                      "' needs 'points' (here or in [sweep]) or explicit 'values'");
+        if (n == 1) throw Error(where(cfg, pts ? *pts : *points_node) + ": a lower/upper grid needs points >= 2");
+        for (std::size_t k = 0; k < n; ++k) {
+          double u = static_cast<double>(k) / static_cast<double>(n - 1);
+          sp.values.push_back(k == n - 1 ? sp.upper : map_unit(sp, u));
+        }
+      } else if (pts) {
+        throw Error(where(cfg, *pts) + ": per-parameter 'points' is for design = \"grid\"; give [sweep] points");
+      }
+    }
+    spec.parameters.push_back(std::move(sp));
+  }
+
+  const std::size_t dim = spec.parameters.size();
+  if (spec.design == Design::Grid) {
+    // Full factorial, last parameter varying fastest (C order, numpy.meshgrid indexing="ij").
+    // Axes: one per [[sweep.parameter]] table (a `names` table is one axis of linked columns).
+    std::vector<std::size_t> axis_size(n_axes, 0);
+    for (auto& p : spec.parameters) axis_size[p.axis] = p.values.size();
+    std::size_t n = 1;
+    for (std::size_t a : axis_size) {
+      n *= a;
+      if (n > kMaxPoints) throw Error(where(cfg, *sn) + ": grid has more than " + std::to_string(kMaxPoints) + " points");
+    }
+    spec.n_design = n;
+    spec.points.resize(n * dim);
+    std::vector<std::size_t> row(n_axes);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::size_t rest = i;
+      for (std::size_t a = n_axes; a-- > 0;) {
+        row[a] = rest % axis_size[a];
+        rest /= axis_size[a];
+      }
+      for (std::size_t d = 0; d < dim; ++d) spec.points[i * dim + d] = spec.parameters[d].values[row[spec.parameters[d].axis]];
+    }
+  } else {
+    if (!points_node) throw Error(where(cfg, *sn) + ": design = \"" + spec.design_name + "\" needs points = N in [sweep]");
+    if (spec.design == Design::Sobol && dim > kSobolMaxDim)
+      throw Error(where(cfg, *pn) + ": sobol design supports at most " + std::to_string(kSobolMaxDim) + " parameters");
+    std::vector<double> u = spec.design == Design::Lhs ? lhs_points(points, dim, spec.seed) : sobol_points(points, dim);
+    spec.n_design = points;
+    spec.points.resize(points * dim);
+    for (std::size_t i = 0; i < points; ++i)
+      for (std::size_t d = 0; d < dim; ++d) spec.points[i * dim + d] = map_unit(spec.parameters[d], u[i * dim + d]);
+  }
+  parse_options(cfg, *st, spec);
+  if (spec.n_combos > 1) {  // outer product: options slowest, the design's points repeat per combination
+    if (spec.n_combos * spec.n_design > kMaxPoints) throw Error(where(cfg, *sn) + ": too many points");
+    std::vector<double> design = std::move(spec.points);
+    spec.points.clear();
+    for (std::size_t c = 0; c < spec.n_combos; ++c) spec.points.insert(spec.points.end(), design.begin(), design.end());
+  }
+  spec.n_points = spec.n_combos * spec.n_design;
+  return spec;
+}
+
+std::size_t SweepSpec::option_value(std::size_t combo, std::size_t k) const {
+  std::size_t rest = combo;
+  for (std::size_t j = options.size(); j-- > k + 1;) rest /= options[j].labels.size();
+  return rest % options[k].labels.size();
+}
+
+std::string SweepSpec::describe_combo(std::size_t combo) const {
+  std::string s;
+  for (std::size_t k = 0; k < options.size(); ++k)
+    s += (s.empty() ? "" : ", ") + options[k].name + " = " + options[k].labels[option_value(combo, k)];
+  return s;
+}
+
+config::Config SweepSpec::config_for(const config::Config& cfg, std::size_t combo) const {
+  config::Config c = cfg;
+  if (options.empty()) return c;
+  toml::table* mt = c.table["model"].as_table();
+  if (!mt) throw Error(cfg.path + ": missing [model] section");
+  const toml::array* arr = cfg.table["sweep"]["option"].as_array();
+  for (std::size_t k = 0; k < options.size(); ++k) {
+    const toml::node* v = arr->get(k)->as_table()->get("values")->as_array()->get(option_value(combo, k));
+    v->visit([&](auto&& x) { mt->insert_or_assign(options[k].name, x); });
+  }
+  return c;
+}
+
+}  // namespace phasmid::sweep

@@ -1,0 +1,59 @@
+#pragma once
+// The [sweep] section of a scenario config (docs/sweep.md): which named parameters to vary,
+// over which design, and how long to simulate each point.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "config/config.hpp"
+
+namespace phasmid::sweep {
+
+enum class Design { Grid, Lhs, Sobol };
+
+struct SweptParameter {
+  std::string name;
+  std::string unit;
+  std::vector<double> values;  // grid: the axis' values (explicit, from lower/upper/points, or a column of rows)
+  double lower = 0, upper = 0;
+  bool log_scale = false;
+  std::size_t axis = 0;        // grid: parameters of one `names = [...]` table share an axis (linked values)
+};
+
+// A categorical axis over a key of [model] (e.g. gait = "tetrapod" | "tripod"): each value
+// builds its own model; combined with the design as an outer product (options vary slowest).
+struct SweptOption {
+  std::string name;
+  std::vector<std::string> labels;  // values as text ("tetrapod", "true", "2")
+  std::vector<std::string> where;   // file:line of each value
+};
+
+struct SweepSpec {
+  Design design = Design::Grid;
+  std::string design_name;  // "grid" | "lhs" | "sobol"
+  std::uint64_t seed = 0;
+  std::vector<SweptParameter> parameters;
+  std::vector<SweptOption> options;
+  std::size_t n_design = 0;    // points of the design over the parameters
+  std::size_t n_combos = 1;    // combinations of option values
+  std::size_t n_points = 0;    // n_combos * n_design
+  std::vector<double> points;  // n_points x parameters.size(), row-major, in parameter units
+  double t_end_ms = 0, discard_ms = 0;
+
+  std::vector<std::string> names() const;
+  std::vector<std::string> units() const;
+  double at(std::size_t point, std::size_t param) const { return points[point * parameters.size() + param]; }
+  std::size_t combo_of(std::size_t point) const { return point / n_design; }
+  // Index of option k's value in combination c (first option slowest).
+  std::size_t option_value(std::size_t combo, std::size_t k) const;
+  // The config with combination c's option values written into [model].
+  config::Config config_for(const config::Config& cfg, std::size_t combo) const;
+  std::string describe_combo(std::size_t combo) const;  // e.g. "gait = tripod"
+};
+
+// Parses and validates [sweep] against the model's parameters (names, admissible ranges);
+// every error names file:line. t_end_ms / discard_ms default to [simulation]'s.
+SweepSpec parse_sweep(const config::Config& cfg, const model::ParameterSet& params,
+                      const config::SimulationSettings& sim);
+
+}  // namespace phasmid::sweep

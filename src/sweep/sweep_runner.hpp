@@ -1,0 +1,50 @@
+#pragma once
+// Runs a parameter sweep (docs/sweep.md): every point of the [sweep] design is simulated and
+// reduced to gait features and a gait class, in parallel with OpenMP. Each point is computed
+// independently from the same inputs and stored by its index, so the result does not depend
+// on the number of threads or on how often the sweep was interrupted and resumed.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "config/config.hpp"
+#include "sweep/sweep_store.hpp"
+
+namespace phasmid::sweep {
+
+struct SweepOptions {
+  std::string output = "sweep.h5";
+  std::vector<std::string> sets;  // --set NAME=VALUE, applied to every point before the swept values
+  bool resume = false;            // continue from "<output>.journal"
+  int threads = 0;                // 0: OpenMP's default (OMP_NUM_THREADS or the number of cores)
+  long stop_after = -1;           // testing: stop (as if interrupted) after this many new points
+  bool progress = true;           // progress bar on a terminal
+  bool handle_signals = false;    // SIGINT/SIGTERM finish the running points, then stop resumably
+  std::string command;            // for the `command` attribute
+};
+
+struct SweepOutcome {
+  std::size_t n_points = 0;
+  std::size_t n_recovered = 0;  // taken from the journal (--resume)
+  std::size_t n_computed = 0;   // computed in this run
+  std::size_t n_failed = 0;     // of all points finished so far
+  bool complete = false;        // false: stopped early; the journal holds the finished points
+  int signal = 0;               // the signal that stopped the sweep, if any
+  int threads = 0;
+  double wall_seconds = 0;
+  std::string output, journal;
+};
+
+SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& options);
+
+// One point: the base parameters with the swept ones replaced, simulated and reduced to
+// features. Never throws for a failing point: the reason goes into PointResult::status.
+PointResult evaluate_point(const model::OdeModel& model, const std::vector<double>& base_parameters,
+                           const std::vector<std::size_t>& swept_indices, const SweepSpec& spec,
+                           std::size_t point, const solver::SolverOptions& solver_options);
+
+// Gait class of a point from its features: the label of a `gait_class` feature if the model
+// provides one (see docs/sweep.md), else "ok".
+std::string gait_class_of(const std::vector<features::Feature>& features);
+
+}  // namespace phasmid::sweep

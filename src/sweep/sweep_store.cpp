@@ -1,0 +1,289 @@
+#include "sweep/sweep_store.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "common/error.hpp"
+#include "io/trajectory_writer.hpp"
+
+namespace phasmid::sweep {
+namespace {
+constexpr const char* kMagic = "phasmid-sweep-journal 1";
+
+std::string hex64(std::uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016" PRIx64, v);
+  return buf;
+}
+
+std::string hexfloat(double v) {
+  if (std::isnan(v)) return "nan";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%a", v);
+  return buf;
+}
+
+bool parse_double(const std::string& s, double& out) {
+  if (s == "nan") {
+    out = std::numeric_limits<double>::quiet_NaN();
+    return true;
+  }
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  return end && *end == '\0' && end != s.c_str();
+}
+
+double now_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+void write_all(int fd, const std::string& s, const std::string& path) {
+  const char* p = s.data();
+  size_t left = s.size();
+  while (left > 0) {
+    ssize_t w = ::write(fd, p, left);
+    if (w < 0) {
+      if (errno == EINTR) continue;
+      throw Error(path + ": cannot write journal: " + std::strerror(errno));
+    }
+    p += w;
+    left -= static_cast<size_t>(w);
+  }
+}
+
+std::string header_line(std::uint64_t fingerprint, std::size_t n_points) {
+  return std::string(kMagic) + " fingerprint=" + hex64(fingerprint) + " n_points=" + std::to_string(n_points);
+}
+}  // namespace
+
+std::uint64_t fnv1a(const std::string& bytes, std::uint64_t h) {
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
+
+std::uint64_t sweep_fingerprint(const std::string& resolved_config, const SweepSpec& spec) {
+  std::string s = resolved_config;
+  s += "\n#design " + spec.design_name + " seed " + std::to_string(spec.seed);
+  s += "\n#t " + hexfloat(spec.t_end_ms) + " " + hexfloat(spec.discard_ms);
+  for (auto& p : spec.parameters) s += "\n#p " + p.name;
+  for (auto& o : spec.options) {
+    s += "\n#o " + o.name;
+    for (auto& l : o.labels) s += " " + std::to_string(l.size()) + ":" + l;
+  }
+  s += "\n#x";
+  for (double x : spec.points) s += " " + hexfloat(x);
+  return fnv1a(s);
+}
+
+std::string encode_record(std::size_t index, const PointResult& r) {
+  nlohmann::json j;
+  j["i"] = index;
+  j["s"] = r.status;
+  j["g"] = r.gait_class;
+  nlohmann::json f = nlohmann::json::array();
+  for (auto& x : r.features) f.push_back({x.name, hexfloat(x.value), x.unit});
+  j["f"] = f;
+  // ensure_ascii: the line stays one line of plain bytes whatever a solver message contains
+  std::string payload = j.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace);
+  return hex64(fnv1a(payload)) + " " + payload;
+}
+
+bool decode_record(const std::string& line, std::size_t& index, PointResult& r) {
+  if (line.size() < 18 || line[16] != ' ') return false;
+  std::string payload = line.substr(17);
+  if (hex64(fnv1a(payload)) != line.substr(0, 16)) return false;
+  try {
+    auto j = nlohmann::json::parse(payload);
+    index = j.at("i").get<std::size_t>();
+    r = PointResult{};
+    r.status = j.at("s").get<std::string>();
+    r.gait_class = j.at("g").get<std::string>();
+    for (auto& f : j.at("f")) {
+      features::Feature x;
+      x.name = f.at(0).get<std::string>();
+      if (!parse_double(f.at(1).get<std::string>(), x.value)) return false;
+      x.unit = f.at(2).get<std::string>();
+      r.features.push_back(std::move(x));
+    }
+  } catch (const std::exception&) {
+    return false;
+  }
+  return true;
+}
+
+Journal::Journal(const std::string& path, std::uint64_t fingerprint, std::size_t n_points, bool resume)
+    : path_(path) {
+  namespace fs = std::filesystem;
+  const std::string header = header_line(fingerprint, n_points);
+  if (resume && fs::exists(path)) {
+    fd_ = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+    if (fd_ < 0) throw Error(path + ": cannot open journal for appending: " + std::strerror(errno));
+    lock_or_throw();  // before reading: a running sweep may still be appending
+    auto fail = [&](const std::string& msg) {
+      ::close(fd_);
+      fd_ = -1;
+      throw Error(path + ": " + msg);
+    };
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail("cannot read journal");
+    std::string line;
+    std::uintmax_t good_end = 0, pos = 0;
+    bool first = true;
+    while (std::getline(in, line)) {
+      const bool complete = !in.eof();  // getline hit a newline
+      pos += line.size() + (complete ? 1 : 0);
+      if (first) {
+        first = false;
+        if (!complete || line.rfind(kMagic, 0) != 0) fail("not a phasmid sweep journal");
+        if (line != header)
+          fail("journal belongs to a different sweep (the config, --set values or [sweep] changed since it was "
+               "started); delete it to start over");
+        good_end = pos;
+        continue;
+      }
+      std::size_t index;
+      PointResult r;
+      if (complete && decode_record(line, index, r) && index < n_points) {
+        recovered_.emplace(index, std::move(r));  // first record of a point wins
+        good_end = pos;
+      } else {
+        ++torn_;
+        good_end = pos;  // skip the bad line but keep what follows; its point is recomputed
+        if (!complete) good_end = pos - line.size();  // a torn tail is cut off before appending
+      }
+    }
+    if (first) fail("empty sweep journal; delete it to start over");
+    in.close();
+    if (::ftruncate(fd_, static_cast<off_t>(good_end)) != 0) fail(std::string("cannot truncate journal: ") + std::strerror(errno));
+  } else {
+    auto dir = fs::path(path).parent_path();
+    if (!dir.empty()) fs::create_directories(dir);
+    fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw Error(path + ": cannot create journal: " + std::strerror(errno));
+    lock_or_throw();
+    write_all(fd_, header + "\n", path_);
+    ::fdatasync(fd_);
+  }
+  last_sync_ = now_seconds();
+}
+
+void Journal::lock_or_throw() {
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd_);
+    fd_ = -1;
+    throw Error(path_ + ": another phasmid sweep is running on this output (journal locked)");
+  }
+}
+
+Journal::~Journal() {
+  if (fd_ >= 0) {
+    ::fdatasync(fd_);
+    ::close(fd_);
+  }
+}
+
+void Journal::append(std::size_t index, const PointResult& r) { append_line(encode_record(index, r)); }
+
+void Journal::append_line(const std::string& record) {
+  const std::string line = record + "\n";
+  std::lock_guard<std::mutex> lock(mu_);
+  write_all(fd_, line, path_);
+  double t = now_seconds();
+  if (t - last_sync_ > 1.0) {  // bound what a power cut can lose; a kill loses nothing written
+    ::fdatasync(fd_);
+    last_sync_ = t;
+  }
+}
+
+void Journal::sync() {
+  std::lock_guard<std::mutex> lock(mu_);
+  if (fd_ >= 0) ::fdatasync(fd_);
+}
+
+void Journal::close_and_remove() {
+  std::lock_guard<std::mutex> lock(mu_);
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  std::filesystem::remove(path_);
+}
+
+void write_sweep_h5(const std::string& output, const SweepSpec& spec, const std::vector<PointResult>& results,
+                    const model::OdeModel& model, const std::vector<double>& base_parameters,
+                    const io::RunInfo& info) {
+  const std::size_t n = spec.n_points, dim = spec.parameters.size();
+  if (results.size() != n) throw Error("internal: sweep results incomplete");
+
+  // Feature columns: every feature any point produced, in order of first appearance by point.
+  std::vector<std::string> fnames, funits;
+  std::map<std::string, std::size_t> column;
+  for (auto& r : results)
+    for (auto& f : r.features)
+      if (column.emplace(f.name, fnames.size()).second) {
+        fnames.push_back(f.name);
+        funits.push_back(f.unit);
+      }
+  std::vector<std::vector<double>> fvalues(fnames.size(), std::vector<double>(n, std::numeric_limits<double>::quiet_NaN()));
+  std::vector<std::string> status(n), gait(n);
+  std::int64_t n_failed = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    status[i] = results[i].status;
+    gait[i] = results[i].gait_class;
+    if (status[i] != "ok") ++n_failed;
+    for (auto& f : results[i].features) fvalues[column[f.name]][i] = f.value;
+  }
+
+  io::H5Writer w(output);
+  w.write_run_info(info);
+  w.ensure_group("/sweep");
+  w.write("/sweep/parameter_names", spec.names());
+  w.write("/sweep/parameter_units", spec.units());
+  std::string units_list;
+  for (auto& u : spec.units()) units_list += (units_list.empty() ? "" : ", ") + u;
+  w.write("/sweep/points", spec.points, units_list, {static_cast<hsize_t>(n), static_cast<hsize_t>(dim)});
+  for (std::size_t d = 0; d < dim; ++d) {
+    std::vector<double> col(n);
+    for (std::size_t i = 0; i < n; ++i) col[i] = spec.at(i, d);
+    w.write("/sweep/parameters/" + spec.parameters[d].name, col, spec.parameters[d].unit);
+  }
+  if (!spec.options.empty()) {
+    std::vector<std::string> onames;
+    for (std::size_t k = 0; k < spec.options.size(); ++k) {
+      onames.push_back(spec.options[k].name);
+      std::vector<std::string> col(n);
+      for (std::size_t i = 0; i < n; ++i) col[i] = spec.options[k].labels[spec.option_value(spec.combo_of(i), k)];
+      w.write("/sweep/options/" + spec.options[k].name, col);
+    }
+    w.write("/sweep/option_names", onames);
+  }
+  w.ensure_group("/sweep/features");
+  for (std::size_t k = 0; k < fnames.size(); ++k) w.write("/sweep/features/" + fnames[k], fvalues[k], funits[k]);
+  w.write("/sweep/feature_names", fnames);
+  w.write("/sweep/feature_units", funits);
+  w.write("/sweep/gait_class", gait);
+  w.write("/sweep/status", status);
+  w.set_attribute("/sweep", "design", spec.design_name);
+  w.set_attribute("/sweep", "seed", static_cast<double>(spec.seed));
+  w.set_attribute("/sweep", "n_points", static_cast<double>(n));
+  w.set_attribute("/sweep", "n_failed", static_cast<double>(n_failed));
+  w.set_attribute("/sweep", "t_end_ms", spec.t_end_ms);
+  w.set_attribute("/sweep", "discard_ms", spec.discard_ms);
+  io::write_parameters(w, model, base_parameters);
+  w.commit();
+}
+
+}  // namespace phasmid::sweep
