@@ -17,6 +17,12 @@ struct Def {
                     const std::string& desc, double lo = -INFINITY, double hi = INFINITY) {
     return m.define({name, v, unit, src, desc, lo, hi});
   }
+  // Network-level parameters shared by several legs: defined by the first leg.
+  size_t once(const std::string& name, double v, const char* unit, const std::string& src, const std::string& desc,
+              double lo = -INFINITY, double hi = INFINITY) {
+    if (m.parameters().contains(name)) return m.parameters().index(name);
+    return (*this)(name, v, unit, src, desc, lo, hi);
+  }
 };
 
 Condition below(size_t state, size_t thr, size_t width) { return {Condition::AngleBelow, state, thr, width}; }
@@ -123,9 +129,9 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
     m.add_synapse(L.sf, L.sb, c.cpg_cpg);
     m.add_synapse(L.sb, L.sf, c.cpg_cpg);
     PresynapticGate g;
-    g.strength = def("syn.presyn.strength", 1.0, "1", k322, "fraction of the CPG -> IN conductance removed by full presynaptic inhibition", 0, 1);
-    g.V_h = def("syn.presyn.V_h", -43, "mV", std::string(kChoice) + ": as the synapses of Table A.4", "half-activation of presynaptic inhibition");
-    g.gamma = def("syn.presyn.gamma", -10, "1/mV", std::string(kChoice) + ": as the CPG synapses of Table A.4", "slope of presynaptic inhibition");
+    g.strength = def.once("syn.presyn.strength", 1.0, "1", k322, "fraction of the CPG -> IN conductance removed by full presynaptic inhibition", 0, 1);
+    g.V_h = def.once("syn.presyn.V_h", -43, "mV", std::string(kChoice) + ": as the synapses of Table A.4", "half-activation of presynaptic inhibition");
+    g.gamma = def.once("syn.presyn.gamma", -10, "1/mV", std::string(kChoice) + ": as the CPG synapses of Table A.4", "slope of presynaptic inhibition");
     g.neuron = L.sb;
     m.set_synapse_gate(L.pr.syn_par_inc, g);
     m.set_synapse_gate(L.pr.syn_par_dec, g);

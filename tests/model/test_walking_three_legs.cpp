@@ -38,7 +38,9 @@ double cdist(double a, double b) {
 TEST(ThreeLegs, TetrapodPeriodAndMetachronalLags) {
   size_t n = 0;
   auto f = walk("three_legs_tetrapod.toml", {}, &n);
-  EXPECT_EQ(n, 234u);  // Section 2.6: 234 equations
+  // Section 2.6: 234 equations for the 72 neurons, muscles and joints; phasmid adds one
+  // start/transition command neuron per leg (<leg>.ld_hold, 2 states each).
+  EXPECT_EQ(n, 234u + 3u * 2u);
   for (const char* leg : {"front", "middle", "hind"}) {
     ASSERT_TRUE(f.count(std::string(leg) + ".step_period_ms")) << leg;
     EXPECT_NEAR(f[std::string(leg) + ".step_period_ms"], 510.0, 15.0) << leg;  // T_4pod = 510 ms
