@@ -3,7 +3,7 @@
 // tripod ones (Figs. 3.20 A, 3.22 A), and strong couplings shift protraction into stance, i.e.
 // less retraction during ground contact (Figs. 3.20 B, 3.22 B). To stay CI-sized (~100 CPU s per
 // point) this runs the shipped config with its coupling rows cut to weak and strong inhibition:
-// 2 rows x 2 start conditions = 4 points. Skipped while the three-leg model is not built in.
+// 2 rows x 2 start conditions = 4 points (~100 CPU s with KLU).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -67,7 +67,15 @@ TEST(CouplingSweep, WeakInhibitionGivesTetrapodAndTripodStrongCouplingShiftsProt
     auto v = h.read_doubles(std::string("/sweep/features/") + leg + ".thc.stance_change_deg");
     for (size_t i = 0; i < 4; ++i) retraction[i] += v[i];
   }
-  EXPECT_LT(retraction[1], retraction[0]) << "strong coupling shortens retraction in stance (tetrapod, Fig. 3.20 B)";
-  EXPECT_LT(retraction[3], retraction[2]) << "strong coupling shortens retraction in stance (tripod, Fig. 3.22 B)";
+  // "the increase of the coupling strengths (figure 3.20 B) causes the protraction phases to
+  // begin during ground contact. Consequently, the retraction phases are shorter": a shift, not
+  // solver noise, so at least 5 deg less retraction in stance summed over the three legs.
+  const double kShiftDeg = 5.0;
+  EXPECT_LT(retraction[1], retraction[0] - kShiftDeg)
+      << "strong inhibition shortens retraction in stance (tetrapod, Fig. 3.20 B): " << retraction[1] << " vs weak "
+      << retraction[0] << " deg";
+  EXPECT_LT(retraction[3], retraction[2] - kShiftDeg)
+      << "strong inhibition shortens retraction in stance (tripod, Fig. 3.22 B): " << retraction[3] << " vs weak "
+      << retraction[2] << " deg";
   fs::remove_all(dir);
 }
