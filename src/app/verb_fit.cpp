@@ -15,7 +15,7 @@ namespace phasmid::app {
 namespace {
 struct FitArgs {
   std::string config, out;
-  std::vector<std::string> sets;
+  std::vector<std::string> sets, profile;
   fit::FitOverrides ov;
   bool quiet = false;
 };
@@ -25,6 +25,7 @@ int run_fit_verb(const FitArgs& a) {
   auto model = config::build_model(cfg, a.sets);
   fit::FitSpec spec = fit::load_fit_spec(cfg, *model, a.ov);
   spec.optimizer.progress = !a.quiet;
+  if (!a.profile.empty()) spec.profile = a.profile;
   spec.problem.solver.progress = false;
   fit::FitProblem problem(*model, spec.parameters, spec.targets, spec.problem);
   const std::string out = a.out.empty() ? "fit.h5" : a.out;
@@ -55,6 +56,7 @@ const RegisterVerb reg{{"fit", "Fit parameters to feature targets, switch condit
                           sub.add_option("--seed", a->ov.seed, "seed of the start sampling");
                           sub.add_option("--target-set", a->ov.target_set, "which set of [[fit.feature]]/[[fit.switch]] targets");
                           sub.add_option("--max-iterations", a->ov.max_iterations, "Ceres iteration limit");
+                          sub.add_option("--profile", a->profile, "profile likelihood of this estimated parameter (repeatable)");
                           sub.add_option("-o,--output", a->out, "output HDF5 file (default fit.h5)");
                           sub.add_option("--set", a->sets, "override a parameter: NAME=VALUE (repeatable)");
                           sub.add_flag("-q,--quiet", a->quiet, "no progress or summary output");

@@ -7,6 +7,7 @@
 
 #include "common/embedded.hpp"
 #include "common/error.hpp"
+#include "model/coupled_ctr_fti_model.hpp"
 #include "model/mechanical_joint_model.hpp"
 #include "model/leg_network.hpp"
 #include "model/network_builder.hpp"
@@ -14,9 +15,27 @@
 namespace phasmid::config {
 namespace fs = std::filesystem;
 
-std::string where(const Config& cfg, const toml::node& node) {
+std::string where(const std::string& origin, const toml::node& node) {
   auto line = node.source().begin.line;
-  return cfg.path + (line ? ":" + std::to_string(line) : "");
+  return origin + (line ? ":" + std::to_string(line) : "");
+}
+
+std::string where(const Config& cfg, const toml::node& node) { return where(cfg.path, node); }
+
+std::string text(const Config& cfg, const toml::node& node, const std::string& key) {
+  if (auto v = node.value<std::string>()) return *v;
+  throw Error(where(cfg, node) + ": '" + key + "' must be a string");
+}
+
+void check_keys(const Config& cfg, const toml::table& t, const std::string& section,
+                const std::set<std::string>& allowed) {
+  for (auto& [k, v] : t)
+    if (!allowed.count(std::string(k.str()))) {
+      std::string list;
+      for (auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      throw Error(where(cfg, v) + ": unknown key '" + std::string(k.str()) + "' in [" + section + "] (allowed: " +
+                  list + ")");
+    }
 }
 
 double number(const Config& cfg, const toml::node& node, const std::string& key) {
@@ -30,12 +49,6 @@ std::string text_of(const Config& cfg, const toml::table& t, const std::string& 
   if (!n) return def;
   if (auto v = n->value<std::string>()) return *v;
   throw Error(where(cfg, *n) + ": '" + key + "' must be a string");
-}
-
-void check_keys(const Config& cfg, const toml::table& t, const std::string& section, const std::set<std::string>& allowed) {
-  for (auto& [k, v] : t)
-    if (!allowed.count(std::string(k.str())))
-      throw Error(where(cfg, v) + ": unknown key '" + std::string(k.str()) + "' in [" + section + "]");
 }
 
 // [parameters] accepts quoted dotted names ("middle.fti.b_v" = 12.5) and TOML dotted keys
@@ -112,6 +125,8 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
     double first = inc ? inc_ms : 500 - inc_ms;
     double angle0 = inc ? t.angle_min_deg : t.angle_max_deg;
     m = std::make_unique<model::MechanicalJointModel>(leg, joint, inc, first, 500, angle0, thc_table);
+  } else if (type == "coupled_ctr_fti") {
+    m = std::make_unique<model::CoupledCtrFtiModel>(leg);
   } else if (type == "single_joint") {
     m = model::build_single_joint_model(leg, joint, thc_table);
   } else if (type == "curve_walking") {
@@ -145,7 +160,7 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
   } else {
     const toml::node* n = mt->get("type");
     throw Error((n ? where(cfg, *n) : cfg.path) + ": unknown model type '" + type +
-                "' (expected single_joint, mechanical_joint, leg, three_legs or curve_walking)");
+                "' (expected mechanical_joint, coupled_ctr_fti, single_joint, leg, three_legs or curve_walking)");
   }
 
   if (const toml::table* pt = cfg.table["parameters"].as_table()) {

@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -37,8 +38,13 @@ SimulationSettings simulation_settings(const Config& cfg);
 // Text recorded as the `config` attribute of output files: the config plus the overrides.
 std::string resolved_config_text(const Config& cfg, const std::vector<std::string>& sets);
 
-// Helpers for other verbs' sections: "file:line: message" errors.
+// Helpers for every verb's section parser: "file:line: message" errors.
+std::string where(const std::string& origin, const toml::node& node);
 std::string where(const Config& cfg, const toml::node& node);
 double number(const Config& cfg, const toml::node& node, const std::string& key);
+std::string text(const Config& cfg, const toml::node& node, const std::string& key);
+// Rejects keys of `table` outside `allowed`, naming file:line, the section and the allowed keys.
+void check_keys(const Config& cfg, const toml::table& table, const std::string& section,
+                const std::set<std::string>& allowed);
 
 }  // namespace phasmid::config

@@ -2,6 +2,7 @@
 // with a robust loss, one block per residual sharing a cached evaluation (the loss must act
 // on each residual, not on the norm of all of them).
 #include <ceres/ceres.h>
+#include <glog/logging.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -118,6 +119,13 @@ class History : public ceres::IterationCallback {
 }  // namespace
 
 FitSummary optimize_ceres(const FitProblem& problem, const std::vector<double>& x0, const OptimizerOptions& o) {
+  // Ceres logs a failed evaluation through glog even with logging_type = SILENT; phasmid reports
+  // failures in the summary instead (the CLI contract is one line on stderr per error).
+  static const bool quiet_glog = [] {
+    FLAGS_minloglevel = google::GLOG_FATAL;
+    return true;
+  }();
+  (void)quiet_glog;
   FitSummary out;
   Shared shared{&problem, {}};
   const size_t n = problem.num_parameters(), m = problem.num_residuals();
@@ -198,7 +206,7 @@ FitSummary optimize_ceres(const FitProblem& problem, const std::vector<double>& 
   out.message = summary.message;
   if (shared.failed && !shared.last_error.empty()) out.message += (out.message.empty() ? "" : "; ") + std::string("last failed evaluation: ") + shared.last_error;
   out.failed_evaluations = shared.failed;
-  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  out.iterations = std::max(0, static_cast<int>(summary.iterations.size()) - 1);
   out.evaluations = shared.calls;
   out.jacobian_evaluations = shared.jacobian_calls;
   if (summary.termination_type == ceres::FAILURE && summary.iterations.empty()) {

@@ -11,23 +11,10 @@ namespace phasmid::fit {
 namespace fs = std::filesystem;
 using config::number;
 using config::where;
+using config::check_keys;
+using config::text;
 
 namespace {
-
-void check_keys(const config::Config& cfg, const toml::table& t, const std::string& section,
-                const std::set<std::string>& allowed) {
-  for (auto& [k, v] : t)
-    if (!allowed.count(std::string(k.str()))) {
-      std::string list;
-      for (auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw Error(where(cfg, v) + ": unknown key '" + std::string(k.str()) + "' in [" + section + "] (allowed: " + list + ")");
-    }
-}
-
-std::string text(const config::Config& cfg, const toml::node& n, const std::string& key) {
-  if (auto v = n.value<std::string>()) return *v;
-  throw Error(where(cfg, n) + ": '" + key + "' must be a string");
-}
 
 bool boolean(const config::Config& cfg, const toml::node& n, const std::string& key) {
   if (auto v = n.value<bool>()) return *v;

@@ -216,6 +216,10 @@ void write_fit_h5(io::H5Writer& out, const FitProblem& problem, const FitSpec& s
     } catch (const Error& e) {
       out.set_attribute("/fit", "trajectory_note", std::string("best-fit trajectory not written: ") + e.what());
     }
+  } else {
+    // No usable optimum: record the parameter vector the fit started from.
+    io::write_parameters(out, problem.model(), problem.model_parameters(b.x_start.data()));
+    out.set_attribute("/fit", "trajectory_note", std::string("no usable optimum: no best-fit trajectory; /parameters holds the start"));
   }
 }
 

@@ -5,17 +5,12 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "config/config.hpp"
 #include "features/features.hpp"
 
 namespace phasmid::sensitivity {
 namespace {
-
-std::string where(const std::string& origin, const toml::node& n) {
-  std::ostringstream os;
-  os << origin;
-  if (n.source().begin.line > 0) os << ":" << n.source().begin.line;
-  return os.str();
-}
+using config::where;
 
 double number(const toml::node& n, const std::string& key, const std::string& origin) {
   if (auto v = n.value<double>()) return *v;

@@ -11,6 +11,7 @@
 namespace phasmid::sweep {
 using config::number;
 using config::where;
+using config::check_keys;
 
 std::vector<std::string> SweepSpec::names() const {
   std::vector<std::string> v;
@@ -25,17 +26,6 @@ std::vector<std::string> SweepSpec::units() const {
 
 namespace {
 constexpr std::size_t kMaxPoints = 10'000'000;
-
-void check_keys(const config::Config& cfg, const toml::table& t, const std::string& section,
-                const std::set<std::string>& allowed) {
-  for (auto& [k, v] : t)
-    if (!allowed.count(std::string(k.str()))) {
-      std::string list;
-      for (auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw Error(where(cfg, v) + ": unknown key '" + std::string(k.str()) + "' in [" + section + "] (expected " +
-                  list + ")");
-    }
-}
 
 std::size_t positive_count(const config::Config& cfg, const toml::node& n, const std::string& key) {
   auto v = n.value_exact<int64_t>();

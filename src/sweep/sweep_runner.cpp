@@ -54,16 +54,9 @@ struct SignalGuard {
 std::string gait_class_of(const std::vector<features::Feature>& features) {
   for (const auto& f : features)
     if (f.name == "gait_class") {
-      // Codes of the walking models' `gait_class` feature (branch `leg`, features::classify_gait):
-      // 2 tripod, 1 tetrapod, 0 irregular. Once that lands, features::gait_class_name is the
-      // single source of these labels.
+      // The walking models' code (features::classify_gait): 2 tripod, 1 tetrapod, 0 irregular.
       if (!std::isfinite(f.value)) return "unclassified";
-      switch (std::lround(f.value)) {
-        case 0: return "irregular";
-        case 1: return "tetrapod";
-        case 2: return "tripod";
-        default: return "class " + std::to_string(std::lround(f.value));
-      }
+      return features::gait_class_name(static_cast<int>(std::lround(f.value)));
     }
   return "ok";
 }

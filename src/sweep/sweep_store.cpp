@@ -255,11 +255,6 @@ void write_sweep_h5(const std::string& output, const SweepSpec& spec, const std:
   std::string units_list;
   for (auto& u : spec.units()) units_list += (units_list.empty() ? "" : ", ") + u;
   w.write("/sweep/points", spec.points, units_list, {static_cast<hsize_t>(n), static_cast<hsize_t>(dim)});
-  for (std::size_t d = 0; d < dim; ++d) {
-    std::vector<double> col(n);
-    for (std::size_t i = 0; i < n; ++i) col[i] = spec.at(i, d);
-    w.write("/sweep/parameters/" + spec.parameters[d].name, col, spec.parameters[d].unit);
-  }
   if (!spec.options.empty()) {
     std::vector<std::string> onames;
     for (std::size_t k = 0; k < spec.options.size(); ++k) {
@@ -272,8 +267,6 @@ void write_sweep_h5(const std::string& output, const SweepSpec& spec, const std:
   }
   w.ensure_group("/sweep/features");
   for (std::size_t k = 0; k < fnames.size(); ++k) w.write("/sweep/features/" + fnames[k], fvalues[k], funits[k]);
-  w.write("/sweep/feature_names", fnames);
-  w.write("/sweep/feature_units", funits);
   w.write("/sweep/gait_class", gait);
   w.write("/sweep/status", status);
   w.set_attribute("/sweep", "design", spec.design_name);
