@@ -25,6 +25,17 @@ struct Def {
   }
 };
 
+// Synapse class of the central command neurons (sideward stop, levator hold), shared by all
+// legs and defined by the first that needs it.
+SynapseIdx command_inhibition_synapse(Def& def) {
+  const std::string cls = "syn.command_inh.";
+  const std::string as_a4 = std::string(kChoice) + ": as Table A.4";
+  return {def.once(cls + "g", 5.0, "nS", kChoice, "inhibition by central command neurons (sideward stop, levator hold)", 0),
+          def.once(cls + "V_h", -43, "mV", as_a4, "half-activation"),
+          def.once(cls + "gamma", -10, "1/mV", as_a4, "slope"),
+          def.once(cls + "E", -80, "mV", as_a4, "reversal (inhibitory)")};
+}
+
 Condition below(size_t state, size_t thr, size_t width) { return {Condition::AngleBelow, state, thr, width}; }
 Condition above(size_t state, size_t thr, size_t width) { return {Condition::AngleAbove, state, thr, width}; }
 Condition after(size_t t) { return {Condition::TimeAfter, 0, t, 0}; }
@@ -87,17 +98,7 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
     size_t zero = def(h + "off", 0.0, "nS", kChoice, "its drive when released", 0);
     q.g_app = drive;
     size_t hold = m.add_nap_neuron(leg + ".ld_hold", q, -30, 0.3);
-    SynapseIdx si;
-    std::string cls = "syn.command_inh.";
-    if (m.parameters().contains(cls + "g")) {
-      si = {m.parameters().index(cls + "g"), m.parameters().index(cls + "V_h"), m.parameters().index(cls + "gamma"),
-            m.parameters().index(cls + "E")};
-    } else {
-      si.g = def(cls + "g", 5.0, "nS", kChoice, "inhibition by central command neurons (sideward stop, levator hold)", 0);
-      si.V_h = def(cls + "V_h", -43, "mV", std::string(kChoice) + ": as Table A.4", "half-activation");
-      si.gamma = def(cls + "gamma", -10, "1/mV", std::string(kChoice) + ": as Table A.4", "slope");
-      si.E = def(cls + "E", -80, "mV", std::string(kChoice) + ": as Table A.4", "reversal (inhibitory)");
-    }
+    SynapseIdx si = command_inhibition_synapse(def);
     m.add_synapse(hold, L.ld.cpg_inc, si);
     size_t rel = def(leg + ".command.ld_release_ms", o.ld_release_ms, "ms",
                      o.ld_release_source.empty() ? std::string(kChoice) : o.ld_release_source,
@@ -154,17 +155,7 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
     // centrally driven inhibitory neuron (removing SF's drive alone lets SB rebound and hold).
     q.g_app = zero;
     size_t stop = m.add_nap_neuron(leg + ".switch.stop", q, -65, 0.9);
-    SynapseIdx si;
-    const std::string cls = "syn.command_inh.";
-    if (m.parameters().contains(cls + "g")) {
-      si = {m.parameters().index(cls + "g"), m.parameters().index(cls + "V_h"), m.parameters().index(cls + "gamma"),
-            m.parameters().index(cls + "E")};
-    } else {
-      si.g = def(cls + "g", 5.0, "nS", kChoice, "inhibition by central command neurons (sideward stop, levator hold)", 0);
-      si.V_h = def(cls + "V_h", -43, "mV", std::string(kChoice) + ": as Table A.4", "half-activation");
-      si.gamma = def(cls + "gamma", -10, "1/mV", std::string(kChoice) + ": as Table A.4", "slope");
-      si.E = def(cls + "E", -80, "mV", std::string(kChoice) + ": as Table A.4", "reversal (inhibitory)");
-    }
+    SynapseIdx si = command_inhibition_synapse(def);
     m.add_synapse(stop, L.sf, si);
     m.add_synapse(stop, L.sb, si);
     m.add_modulation({stop, drive, {after(t_side)}, zero});
