@@ -5,14 +5,7 @@ set -u
 PHASMID="$1"; SRC="$2"
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail=0; pass=0
-expect_error() {  # description, expected substring, command...
-  local desc="$1" want="$2"; shift 2
-  "$@" >"$tmp/out" 2>"$tmp/err"; local rc=$?
-  local lines; lines=$(wc -l <"$tmp/err")
-  if [ $rc -eq 0 ] || ! grep -q -- "$want" "$tmp/err" || [ "$lines" -ne 1 ]; then
-    echo "FAIL: $desc (rc=$rc, stderr: $(cat "$tmp/err"))"; fail=$((fail+1))
-  else pass=$((pass+1)); fi
-}
+source "$SRC/tests/cli/expect_error.sh"
 expect_error "unknown --set parameter" "unknown parameter 'middle.fti.bv'" \
   "$PHASMID" simulate "$SRC/configs/fti_mechanical.toml" --set middle.fti.bv=3 -o "$tmp/a.h5" -q
 [ -e "$tmp/a.h5" ] || [ -e "$tmp/a.h5.tmp" ] && { echo "FAIL: output left behind"; fail=$((fail+1)); }

@@ -6,14 +6,7 @@ set -u
 PHASMID="$1"; SRC="$2"
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail=0; pass=0
-expect_error() {  # description, expected substring, command...
-  local desc="$1" want="$2"; shift 2
-  "$@" >"$tmp/out" 2>"$tmp/err"; local rc=$?
-  local lines; lines=$(wc -l <"$tmp/err")
-  if [ $rc -eq 0 ] || ! grep -q -- "$want" "$tmp/err" || [ "$lines" -ne 1 ]; then
-    echo "FAIL: $desc (rc=$rc, stderr: $(cat "$tmp/err"))"; fail=$((fail+1))
-  else pass=$((pass+1)); fi
-}
+source "$SRC/tests/cli/expect_error.sh"
 DATA="$SRC/datasets/synthetic/fti_kinematics_synthetic.csv"
 PARAMS="$SRC/datasets/synthetic/fti_kinematics_params.tsv"
 if "$PHASMID" fit "$SRC/configs/fti_mechanical.toml" --data "$DATA" --parameters "$PARAMS" -o "$tmp/ok.h5" -q \
