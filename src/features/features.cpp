@@ -91,21 +91,100 @@ Dual mean(const std::vector<Dual>& xs, size_t ns) {
 // Stance (ground contact) is beta below the leg's PR threshold `<leg>.coupling.beta_thr_pr`
 // (38 deg, Section 3.2): the same criterion that switches the PR sensory pathway. Touch-down is
 // beta falling through it, lift-off beta rising through it; both are located by root finding.
+// The PR system's retractor CPG neuron (Figs. 3.20-3.22 plot it against beta) counts as active
+// above the half-activation of the CPG -> IN synapse (`syn.cpg_in.V_h`, Table A.4), the level at
+// which it starts to drive its pathway; below it the PR system is in protraction.
+constexpr size_t kNoState = static_cast<size_t>(-1);
 struct LegRoot {
   std::string leg;
   size_t beta_state;
   double threshold_deg;
+  size_t retractor_state = kNoState;  // `<leg>.thc.cpg_ret.V`, if the leg has a PR network
+  double retractor_level_mV = 0.0;
 };
+
+size_t find_state(const model::OdeModel& model, const std::string& name) {
+  for (size_t i = 0; i < model.states().size(); ++i)
+    if (model.states()[i].name == name) return i;
+  return kNoState;
+}
 
 std::vector<LegRoot> leg_roots(const model::OdeModel& model) {
   std::vector<LegRoot> out;
+  const bool has_level = model.parameters().contains("syn.cpg_in.V_h");
   for (const auto& ch : model.angles()) {
     if (ch.joint != "ctr") continue;
     const std::string thr = ch.leg + ".coupling.beta_thr_pr";
     if (!model.parameters().contains(thr)) continue;
-    out.push_back({ch.leg, ch.angle_state, model.parameters().value(thr)});
+    LegRoot r{ch.leg, ch.angle_state, model.parameters().value(thr)};
+    if (has_level) {
+      r.retractor_state = find_state(model, ch.leg + ".thc.cpg_ret.V");
+      r.retractor_level_mV = model.parameters().value("syn.cpg_in.V_h");
+    }
+    out.push_back(r);
   }
   return out;
+}
+
+// Roots of one leg's events after the transient with short episodes removed: an episode (the
+// time between two crossings) shorter than `min_ms` is a ripple and goes with its two crossings,
+// shortest first, so a ripple merges into the phase it interrupts; of two crossings in the same
+// direction the second goes.
+std::vector<const solver::Event*> debounced_events(const solver::SolveResult& res, size_t root, double discard_ms,
+                                                   double min_ms) {
+  std::vector<const solver::Event*> ev;
+  for (const auto& e : res.events)
+    if (e.root == root && e.t >= discard_ms) ev.push_back(&e);
+  for (;;) {
+    size_t kmin = ev.size();
+    double dmin = min_ms;
+    for (size_t k = 0; k + 1 < ev.size(); ++k) {
+      if (ev[k]->direction == ev[k + 1]->direction) {
+        kmin = k;
+        dmin = -1;
+        break;
+      }
+      if (ev[k + 1]->t - ev[k]->t < dmin) {
+        dmin = ev[k + 1]->t - ev[k]->t;
+        kmin = k;
+      }
+    }
+    if (kmin == ev.size()) break;
+    if (dmin < 0) ev.erase(ev.begin() + kmin + 1);
+    else ev.erase(ev.begin() + kmin, ev.begin() + kmin + 2);
+  }
+  return ev;
+}
+
+// Intervals [begin, end) during which a debounced two-state signal is "on", clipped to
+// [t0, t1]; `on_direction` is the crossing direction that switches it on.
+using Intervals = std::vector<std::pair<double, double>>;
+Intervals on_intervals(const std::vector<const solver::Event*>& ev, int on_direction, double t0, double t1) {
+  Intervals out;
+  if (ev.empty()) return out;
+  double start = ev.front()->direction == on_direction ? -1.0 : t0;  // on before the first event?
+  for (const solver::Event* e : ev) {
+    if (e->direction == on_direction) start = e->t;
+    else if (start >= 0) {
+      out.push_back({start, e->t});
+      start = -1.0;
+    }
+  }
+  if (start >= 0) out.push_back({start, t1});
+  return out;
+}
+
+double total(const Intervals& a) {
+  double s = 0;
+  for (auto& x : a) s += x.second - x.first;
+  return s;
+}
+
+double overlap(const Intervals& a, const Intervals& b) {
+  double s = 0;
+  for (auto& x : a)
+    for (auto& y : b) s += std::max(0.0, std::min(x.second, y.second) - std::max(x.first, y.first));
+  return s;
 }
 
 double wrap01(double x) { return x - std::floor(x); }
@@ -130,6 +209,10 @@ std::vector<Feature> leg_features(const model::OdeModel& model, const solver::So
   std::vector<Feature> out;
   const std::vector<LegRoot> legs = leg_roots(model);
   const size_t first = opt.root_offset + model.angles().size();
+  // Roots of the retractor CPGs follow the beta roots, one per leg that has one (feature_roots).
+  std::vector<size_t> retractor_root(legs.size(), 0);
+  for (size_t l = 0, k = first + legs.size(); l < legs.size(); ++l)
+    if (legs[l].retractor_state != kNoState) retractor_root[l] = k++;
   std::map<std::string, std::vector<double>> liftoffs;
   std::map<std::string, double> periods;
   for (size_t l = 0; l < legs.size(); ++l) {
@@ -137,28 +220,7 @@ std::vector<Feature> leg_features(const model::OdeModel& model, const solver::So
     std::map<double, const solver::Event*> at;
     // Debounce: a swing or stance episode shorter than min_contact_ms (beta rippling around
     // the threshold while a motoneuron fires) is removed with its two crossings.
-    std::vector<const solver::Event*> ev;
-    for (const auto& e : res.events)
-      if (e.root == first + l && e.t >= opt.discard_ms) ev.push_back(&e);
-    // The shortest episode goes first, so a ripple merges into the phase it interrupts.
-    for (;;) {
-      size_t kmin = ev.size();
-      double dmin = opt.min_contact_ms;
-      for (size_t k = 0; k + 1 < ev.size(); ++k) {
-        if (ev[k]->direction == ev[k + 1]->direction) {
-          kmin = k;
-          dmin = -1;
-          break;
-        }
-        if (ev[k + 1]->t - ev[k]->t < dmin) {
-          dmin = ev[k + 1]->t - ev[k]->t;
-          kmin = k;
-        }
-      }
-      if (kmin == ev.size()) break;
-      if (dmin < 0) ev.erase(ev.begin() + kmin + 1);
-      else ev.erase(ev.begin() + kmin, ev.begin() + kmin + 2);
-    }
+    const std::vector<const solver::Event*> ev = debounced_events(res, first + l, opt.discard_ms, opt.min_contact_ms);
     for (const solver::Event* e : ev) {
       (e->direction < 0 ? td : lo).push_back(e->t);
       at[e->t] = e;
@@ -203,6 +265,21 @@ std::vector<Feature> leg_features(const model::OdeModel& model, const solver::So
     if (!swing.empty()) out.push_back({pre + "swing_ms", avg(swing), "ms"});
     if (!stance.empty() && !swing.empty())
       out.push_back({pre + "duty_factor", avg(stance) / (avg(stance) + avg(swing)), "1"});
+    // Figs. 3.20 / 3.22: does the PR system's protraction (retractor CPG inactive) fall into the
+    // swing, and its retraction into the stance? Over the whole analysed window, both as
+    // fractions: of the protraction time spent in ground contact, of the stance time with the
+    // retractor CPG active.
+    if (legs[l].retractor_state != kNoState && !ev.empty()) {
+      const double t0 = opt.discard_ms, t1 = res.t.empty() ? t0 : res.t.back();
+      const auto cpg = debounced_events(res, retractor_root[l], opt.discard_ms, opt.min_contact_ms);
+      const Intervals stance_iv = on_intervals(ev, -1, t0, t1);  // beta falling: touch-down
+      const Intervals retract = on_intervals(cpg, +1, t0, t1);   // V rising: retractor on
+      const Intervals protract = on_intervals(cpg, -1, t0, t1);
+      if (cpg.size() >= 2 && total(protract) > 0 && total(stance_iv) > 0) {
+        out.push_back({pre + "protraction_in_stance_fraction", overlap(protract, stance_iv) / total(protract), "1"});
+        out.push_back({pre + "stance_retraction_fraction", overlap(retract, stance_iv) / total(stance_iv), "1"});
+      }
+    }
   }
   // Phase lag of leg b after leg a: (lift-off of b - preceding lift-off of a) / period of a,
   // circular mean over the cycles after the transient, in [0, 1).
@@ -222,7 +299,7 @@ std::vector<Feature> leg_features(const model::OdeModel& model, const solver::So
   const char* pairs[][2] = {{"hind", "middle"}, {"middle", "front"}, {"front", "hind"}, {"hind", "front"}};
   std::map<std::string, double> lags;
   for (auto& pr : pairs) {
-    double v;
+    double v = 0.0;
     if (lag(pr[0], pr[1], v)) {
       lags[std::string(pr[0]) + "_to_" + pr[1]] = v;
       out.push_back({std::string("phase_lag.") + pr[0] + "_to_" + pr[1], v, "1"});
@@ -308,7 +385,10 @@ std::vector<DualFeature> compute(const model::OdeModel& model, const solver::Sol
 std::vector<solver::RootSpec> feature_roots(const model::OdeModel& model) {
   std::vector<solver::RootSpec> roots;
   for (const auto& ch : model.angles()) roots.push_back({ch.velocity_state, 0.0, 0});
-  for (const auto& l : leg_roots(model)) roots.push_back({l.beta_state, l.threshold_deg * M_PI / 180.0, 0});
+  const std::vector<LegRoot> legs = leg_roots(model);
+  for (const auto& l : legs) roots.push_back({l.beta_state, l.threshold_deg * M_PI / 180.0, 0});
+  for (const auto& l : legs)
+    if (l.retractor_state != kNoState) roots.push_back({l.retractor_state, l.retractor_level_mV, 0});
   return roots;
 }
 

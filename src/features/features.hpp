@@ -50,7 +50,8 @@ const char* gait_class_name(int gait_class);
 
 // One root per angle channel, in channel order: g = y[velocity_state] - 0, both directions;
 // then, for walking models, one per leg: beta crossing `<leg>.coupling.beta_thr_pr`
-// (touch-down falling, lift-off rising), used by the per-leg gait features.
+// (touch-down falling, lift-off rising), used by the per-leg gait features; then one per leg
+// with a PR network: its retractor CPG `<leg>.thc.cpg_ret.V` crossing `syn.cpg_in.V_h`.
 // Pass these first in the root list given to Simulator::run (or set FeatureOptions::root_offset).
 std::vector<solver::RootSpec> feature_roots(const model::OdeModel& model);
 
@@ -58,7 +59,8 @@ std::vector<solver::RootSpec> feature_roots(const model::OdeModel& model);
 //   period_ms, <phase_inc>_ms, <phase_dec>_ms, <phase_inc>_fraction, phase_ratio,
 //   angle_min_deg, angle_max_deg; plus a global `period_ms` (the first channel's period).
 // Walking models add per leg `<leg>.step_period_ms`, `<leg>.stance_ms`, `<leg>.swing_ms`,
-// `<leg>.duty_factor`, and across legs `phase_lag.<a>_to_<b>` and `gait_class` (values only,
+// `<leg>.duty_factor`, `<leg>.protraction_in_stance_fraction`, `<leg>.stance_retraction_fraction`,
+// and across legs `phase_lag.<a>_to_<b>` and `gait_class` (values only,
 // no gradients; docs/walking_model.md).
 // Features that cannot be computed (too few cycles after discard_ms) are omitted.
 std::vector<Feature> compute_features(const model::OdeModel& model, const solver::SolveResult& result,
