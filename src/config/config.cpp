@@ -96,7 +96,7 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
   const toml::table* mt = cfg.table["model"].as_table();
   if (!mt) throw Error(cfg.path + ": missing [model] section");
   check_keys(cfg, *mt, "model", {"type", "leg", "joint", "start_phase", "thc_table", "description",
-                                  "direction_switch", "gait", "coupling", "coupling_strength"});
+                                  "direction_switch", "gait", "coupling", "coupling_strength", "coupling_gate"});
   std::string type = text_of(cfg, *mt, "type", "");
   std::string leg = text_of(cfg, *mt, "leg", "middle");
   std::string thc_table = text_of(cfg, *mt, "thc_table", "");
@@ -152,9 +152,18 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
       o.strong = strength == "strong";
       try {
         model::set_coupling_variant(o, text_of(cfg, *mt, "coupling", "inhibitory"));
+      } catch (const Error& e) {
+        throw Error(where(cfg, mt->get("coupling") ? *mt->get("coupling") : *mt) + ": " + e.what());
+      }
+      try {
+        model::set_coupling_gate(o, text_of(cfg, *mt, "coupling_gate", "target_swing"));
+      } catch (const Error& e) {
+        throw Error(where(cfg, *mt->get("coupling_gate")) + ": " + e.what());
+      }
+      try {
         m = model::build_three_leg_model(o);
       } catch (const Error& e) {
-        throw Error(where(cfg, *mt) + ": " + e.what());
+        throw Error(where(cfg, mt->get("gait") ? *mt->get("gait") : *mt) + ": " + e.what());
       }
     }
   } else {

@@ -35,15 +35,19 @@ std::vector<Extremum> channel_extrema(const model::AngleChannel& ch, size_t root
                                       const solver::SolveResult& res, const FeatureOptions& opt, bool with_grad) {
   const size_t ns = with_grad ? res.sens_params.size() : 0;
   std::vector<Extremum> ex;
+  // Events before the discard time take part in the turning-point selection below (so that the
+  // first extremum after it is judged against the swing that precedes it, not taken as a turning
+  // point only because nothing precedes it: a pause of the angle in mid-swing just after
+  // discard_ms would otherwise count as a minimum) but are dropped from the result.
   for (const auto& e : res.events) {
-    if (e.root != root_index || e.t < opt.discard_ms) continue;
+    if (e.root != root_index) continue;
     Extremum x;
     x.is_max = e.direction < 0;  // velocity falls through zero at a maximum
     x.t.v = e.t;
     x.angle.v = e.y.at(ch.angle_state) * kDeg;
     x.t.g = Eigen::VectorXd::Zero(ns);
     x.angle.g = Eigen::VectorXd::Zero(ns);
-    if (with_grad) {
+    if (with_grad && e.t >= opt.discard_ms) {
       x.t.g = sensitivity::event_time_sensitivity(e, root, ns);
       x.angle.g = sensitivity::state_at_event_sensitivity(e, ch.angle_state, x.t.g) * kDeg;
     }
@@ -54,12 +58,13 @@ std::vector<Extremum> channel_extrema(const model::AngleChannel& ch, size_t root
   // it, a minimum once it has risen more than `delta` above it. Damped oscillations around
   // an equilibrium within one phase are thereby skipped, and an extremum the run ends on
   // before it is confirmed is dropped.
-  if (ex.empty()) return ex;
-  double lo = ex[0].angle.v, hi = lo;
+  double lo = INFINITY, hi = -INFINITY;  // range after the transient sets the hysteresis
   for (auto& x : ex) {
+    if (x.t.v < opt.discard_ms) continue;
     lo = std::min(lo, x.angle.v);
     hi = std::max(hi, x.angle.v);
   }
+  if (!(hi >= lo)) return {};
   const double delta = std::max(opt.min_swing_deg, opt.min_swing_fraction * (hi - lo));
   std::vector<Extremum> kept;
   int looking = 0;  // 0: undecided, +1: looking for a maximum, -1: for a minimum
@@ -78,6 +83,8 @@ std::vector<Extremum> channel_extrema(const model::AngleChannel& ch, size_t root
       imax = k;
     }
   }
+  kept.erase(std::remove_if(kept.begin(), kept.end(), [&](const Extremum& x) { return x.t.v < opt.discard_ms; }),
+             kept.end());
   return kept;
 }
 

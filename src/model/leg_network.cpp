@@ -185,6 +185,12 @@ std::unique_ptr<NetworkModel> build_leg_model(const std::string& leg, LegOptions
   return m;
 }
 
+void set_coupling_gate(ThreeLegOptions& o, const std::string& g) {
+  if (g == "target_swing") o.gate = ThreeLegOptions::CouplingGate::TargetSwing;
+  else if (g == "source_contact") o.gate = ThreeLegOptions::CouplingGate::SourceContact;
+  else throw Error("unknown coupling_gate '" + g + "' (expected target_swing or source_contact)");
+}
+
 void set_coupling_variant(ThreeLegOptions& o, const std::string& v) {
   using S = CouplingSign;
   if (v == "inhibitory") o.sign[0] = o.sign[1] = o.sign[2] = S::Inhibitory;
@@ -270,10 +276,15 @@ std::unique_ptr<NetworkModel> build_three_leg_model(const ThreeLegOptions& o) {
     size_t g = def("coupling." + legs[i] + "_to_" + legs[j] + ".g", sign * g_abs, "nS",
                    o.strong ? std::string(kChoice) + ": 'strong' coupling (2.5x the weak 0.6 nS of Section 3.3)"
                             : std::string(k33) + " (Delta g_app,IN16 = 0.6 nS; negative: inhibitory)",
-                   "change of the target leg's PR sensory IN drive while the source leg has ground contact and "
-                   "the target leg is lifted (negative: inhibitory)");
-    m->add_modulation({L[j].pr.sens_exc, g,
-                       {below(L[i].beta_state, L[i].beta_thr_pr, L[i].width), above(L[j].beta_state, L[j].beta_thr_pr, L[j].width)}});
+                   o.gate == ThreeLegOptions::CouplingGate::TargetSwing
+                       ? "change of the target leg's PR sensory IN drive while the source leg has ground contact and "
+                         "the target leg is lifted (negative: inhibitory)"
+                       : "change of the target leg's PR sensory IN drive while the source leg has ground contact "
+                         "(coupling_gate = source_contact; negative: inhibitory)");
+    std::vector<Condition> when{below(L[i].beta_state, L[i].beta_thr_pr, L[i].width)};
+    if (o.gate == ThreeLegOptions::CouplingGate::TargetSwing)
+      when.push_back(above(L[j].beta_state, L[j].beta_thr_pr, L[j].width));
+    m->add_modulation({L[j].pr.sens_exc, g, when});
   }
   return m;
 }

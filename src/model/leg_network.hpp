@@ -51,6 +51,12 @@ struct ThreeLegOptions {
   CouplingSign sign[3] = {CouplingSign::Inhibitory, CouplingSign::Inhibitory, CouplingSign::Inhibitory};
   bool strong = false;            // weak (0.6 nS, Section 3.3) or strong strengths
   bool direction_switch = false;
+  // When an intersegmental coupling acts (docs/walking_model.md, "Coupling variants"):
+  // TargetSwing - while the source leg has ground contact and the target leg is lifted, the
+  //   literal reading of Section 3.3's numbers (3.3 nS with both legs in contact, 1.0 nS with the
+  //   target lifted); SourceContact - whenever the source leg has ground contact, as a synapse
+  //   from the source's beta pathway would ("dampens the excitatory intrasegmental input").
+  enum class CouplingGate { TargetSwing, SourceContact } gate = CouplingGate::TargetSwing;
 };
 std::unique_ptr<NetworkModel> build_three_leg_model(const ThreeLegOptions& o);
 
@@ -59,5 +65,7 @@ std::unique_ptr<NetworkModel> build_three_leg_model(const ThreeLegOptions& o);
 std::unique_ptr<NetworkModel> build_curve_walking_model();
 // "inhibitory" | "excitatory" | "mixed" (Fig. 3.19 C: hind -> front excitatory, others inhibitory)
 void set_coupling_variant(ThreeLegOptions& o, const std::string& variant);
+// "target_swing" | "source_contact" (ThreeLegOptions::gate)
+void set_coupling_gate(ThreeLegOptions& o, const std::string& gate);
 
 }  // namespace phasmid::model

@@ -16,6 +16,9 @@ expect_error "malformed config names file:line" "bad.toml:3" "$PHASMID" simulate
 printf '[model]\ntype = "mechanical_joint"\n[parameters]\n"middle.fti.nope" = 1\n' >"$tmp/unk.toml"
 expect_error "unknown parameter in config names file:line" "unk.toml:4" "$PHASMID" params "$tmp/unk.toml"
 expect_error "missing config" "no such config" "$PHASMID" params "$tmp/missing.toml"
+printf '[model]\ntype = "three_legs"\ncoupling_gate = "always"\n' >"$tmp/gate.toml"
+expect_error "unknown coupling_gate names file:line and the choices" "gate.toml:3.*unknown coupling_gate 'always' (expected target_swing or source_contact)" \
+  "$PHASMID" params "$tmp/gate.toml"
 expect_error "ratios bad angle" "not a number" "$PHASMID" ratios --joint fti --angles 45,x
 expect_error "solver failure is reported" "CVODES failed" \
   "$PHASMID" simulate "$SRC/configs/fti_mechanical.toml" --set middle.fti.l_E0=0.1 -o "$tmp/d.h5" -q

@@ -1,11 +1,13 @@
 // The shipped coupling sweep (configs/sweep_intersegmental_coupling.toml) against the text of
 // Section 3.3: weak inhibition gives a tetrapod from tetrapod start conditions and a tripod from
-// tripod ones (Figs. 3.20 A, 3.22 A). The text's second conclusion, that strong couplings shift
-// protraction into stance (Figs. 3.20 B, 3.22 B), is NOT reproduced by phasmid's network: the
-// retraction during stance changes by ~0.1 deg of ~89 deg between weak and strong coupling
-// (docs/walking_model.md, "Coupling variants"), so it is reported, not asserted. To stay CI-sized (~100 CPU s per
-// point) this runs the shipped config with its coupling rows cut to weak and strong inhibition:
-// 2 rows x 2 start conditions = 4 points. Skipped while the three-leg model is not built in.
+// tripod ones (Figs. 3.20 A, 3.22 A), and strong couplings make protraction begin during ground
+// contact (Fig. 3.20 B). The second conclusion holds with the couplings gated by the source leg's
+// ground contact alone (`coupling_gate = "source_contact"`, the sweep's second option value):
+// the front leg, whose stance overlaps the hind leg's, starts protracting in stance under strong
+// hind -> front inhibition (docs/walking_model.md, "Coupling variants"); middle and hind legs,
+// whose sources' stances do not overlap their own, are not shifted. To stay CI-sized (~25 CPU s
+// per point) this runs the shipped config cut to weak and strong inhibition with the
+// source-contact gate: 2 rows x 2 start conditions = 4 points.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -39,6 +41,15 @@ TEST(CouplingSweep, WeakInhibitionGivesTetrapodAndTripod) {
   }
   ASSERT_EQ(kept.size(), 2u);
   *rows = kept;
+  // Keep the start-condition option only; the gate is fixed to source_contact.
+  toml::array* opts = cfg.table["sweep"]["option"].as_array();
+  ASSERT_NE(opts, nullptr);
+  toml::array kept_opts;
+  for (auto& o : *opts)
+    if (*o.as_table()->get("name")->value<std::string>() == "gait") kept_opts.push_back(o);
+  ASSERT_EQ(kept_opts.size(), 1u);
+  *opts = kept_opts;
+  cfg.table["model"].as_table()->insert_or_assign("coupling_gate", "source_contact");
 
   fs::path dir = fs::temp_directory_path() / ("phasmid_coupling_" + std::to_string(getpid()));
   fs::remove_all(dir);
@@ -62,6 +73,14 @@ TEST(CouplingSweep, WeakInhibitionGivesTetrapodAndTripod) {
   ASSERT_EQ(g, (std::vector<double>{-0.6, -1.5, -0.6, -1.5}));
   EXPECT_EQ(gait[0], "tetrapod") << "weak inhibition, tetrapod start (Fig. 3.20 A)";
   EXPECT_EQ(gait[2], "tripod") << "weak inhibition, tripod start (Fig. 3.22 A)";
+  // Fig. 3.20 A vs B: with weak inhibition the front leg protracts in the swing and retracts
+  // through the stance; strong inhibition moves part of its protraction into ground contact.
+  auto prot = h.read_doubles("/sweep/features/front.protraction_in_stance_fraction");
+  auto ret = h.read_doubles("/sweep/features/front.stance_retraction_fraction");
+  EXPECT_LT(prot[0], 0.05) << "weak: protraction in the swing";
+  EXPECT_GT(ret[0], 0.95) << "weak: retraction through the stance";
+  EXPECT_GT(prot[1], prot[0] + 0.05) << "strong: protraction begins during ground contact";
+  EXPECT_LT(ret[1], ret[0] - 0.05) << "strong: retraction phase in stance shortened";
 
   fs::remove_all(dir);
 }
