@@ -195,6 +195,8 @@ bool CruseFitProblem::evaluate(const double* x, double* r, double* J, std::strin
       Parameters q = p;
       q.set("retraction_rate", retraction_rate_for_period(p, periods_[k]));
       q.set("duration_ms", settings_.cycles * periods_[k]);
+      // Features need only the onsets: no dense output of event-exact runs.
+      q.set("output_step_ms", settings_.cycles * periods_[k]);
       for (int s : settings_.start_positions) {
         q.set("start_position", s);
         runs[k].push_back(measure(simulate(q), q));
