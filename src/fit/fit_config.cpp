@@ -50,10 +50,27 @@ std::vector<const toml::table*> fit_tables(const config::Config& cfg, const toml
   return out;
 }
 
-bool in_target_set(const config::Config& cfg, const toml::table& t, const std::string& set) {
+namespace {
+
+// The target sets a target table belongs to: `set = "NAME"` or `set = ["A", "B"]`; default "default".
+std::vector<std::string> target_sets_of(const config::Config& cfg, const toml::table& t) {
   const toml::node* n = t.get("set");
-  std::string s = n ? text(cfg, *n, "set") : "default";
-  return s == set;
+  if (!n) return {"default"};
+  std::vector<std::string> out;
+  if (auto a = n->as_array()) {
+    for (auto& e : *a) out.push_back(text(cfg, e, "set"));
+    if (out.empty()) throw Error(where(cfg, *n) + ": 'set' must name at least one target set");
+  } else {
+    out.push_back(text(cfg, *n, "set"));
+  }
+  return out;
+}
+
+}  // namespace
+
+bool in_target_set(const config::Config& cfg, const toml::table& t, const std::string& set) {
+  const auto sets = target_sets_of(cfg, t);
+  return std::find(sets.begin(), sets.end(), set) != sets.end();
 }
 
 namespace {
@@ -61,10 +78,8 @@ namespace {
 std::set<std::string> sets_named(const config::Config& cfg, const toml::table& fit, const std::vector<std::string>& keys) {
   std::set<std::string> s;
   for (const auto& key : keys)
-    for (auto* t : fit_tables(cfg, fit, key)) {
-      const toml::node* n = t->get("set");
-      s.insert(n ? text(cfg, *n, "set") : "default");
-    }
+    for (auto* t : fit_tables(cfg, fit, key))
+      for (auto& name : target_sets_of(cfg, *t)) s.insert(name);
   return s;
 }
 

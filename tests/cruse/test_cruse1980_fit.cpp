@@ -99,6 +99,35 @@ TEST(Cruse1980Fit, TextStatementsDoNotFixTheSwitchLevel) {
   for (size_t i = 0; i < r.size(); ++i) EXPECT_LE(std::abs(r[i]), 1.0) << problem.residual_labels()[i];
 }
 
+// With a lag curve the nodes are determined: the target set closed_form_lag asks for Graham's
+// lag L3 -> L1 = 2 Delta(P), Delta(P) = 100 ms + (P - 200 ms)/4, and the fit from the neutral
+// start must land on the closed form of docs/cruse1980.md,
+//   SL(P) = 10 (1 - Delta/(P - 100 ms)),  SL1R1(P) = 10 - SL(P) - 1000 ms/(P - 100 ms),
+// within what the tolerances allow: lag +- 2 ms moves SL by 10 * 1 ms/(P - 100 ms); the
+// left-right lag difference +- 20 ms moves SL1R1 by 10 * 20 ms/(P - 100 ms).
+TEST(Cruse1980Fit, LagTargetsDetermineTheNodes) {
+  fit::FitOverrides ov;
+  ov.target_set = "closed_form_lag";
+  CruseFit cf = load_cruse_fit(kConfig, {}, ov);
+  cf.spec.optimizer.progress = false;
+  const CruseFitProblem& problem = *cf.problem;
+  const fit::FitResult result = fit::run_fit(problem, cf.spec);
+  const fit::FitSummary& best = result.best();
+  ASSERT_TRUE(best.usable);
+  EXPECT_TRUE(best.converged) << best.termination << " " << best.message;
+  std::vector<double> r(problem.num_residuals());
+  ASSERT_TRUE(problem.evaluate(best.x.data(), r.data(), nullptr));
+  for (size_t i = 0; i < r.size(); ++i) EXPECT_LE(std::abs(r[i]), 1.0) << problem.residual_labels()[i];
+  const Parameters fitted = problem.parameters_at(best.x.data());
+  for (double P : switch_node_periods()) {
+    const std::string at = ".at_" + std::to_string(int(P)) + "ms";
+    const double delta = 100.0 + (P - 200.0) / 4.0;
+    const double sl = 10.0 * (1.0 - delta / (P - 100.0));
+    EXPECT_NEAR(fitted.get("switch.SL" + at), sl, 10.0 * 1.0 / (P - 100.0)) << P;
+    EXPECT_NEAR(fitted.get("switch.SL1R1" + at), 10.0 - sl - 1000.0 / (P - 100.0), 10.0 * 20.0 / (P - 100.0)) << P;
+  }
+}
+
 TEST(Cruse1980Fit, OptimisersThatNeedJacobiansAreRejectedInOneLine) {
   for (const std::string opt : {"ceres", "nlopt:LBFGS", "nlopt:SLSQP"}) {
     fit::FitOverrides ov;
