@@ -192,9 +192,7 @@ bool CruseFitProblem::evaluate(const double* x, double* r, double* J, std::strin
     // Features of every run: per period, per starting position.
     std::vector<std::vector<Features>> runs(periods_.size());
     for (size_t k = 0; k < periods_.size(); ++k) {
-      Parameters q = p;
-      q.set("retraction_rate", retraction_rate_for_period(p, periods_[k]));
-      q.set("duration_ms", settings_.cycles * periods_[k]);
+      Parameters q = at_period(p, periods_[k], settings_.cycles);
       // Features need only the onsets: no dense output of event-exact runs.
       q.set("output_step_ms", settings_.cycles * periods_[k]);
       for (int s : settings_.start_positions) {

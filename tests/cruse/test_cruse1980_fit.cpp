@@ -18,16 +18,6 @@ namespace {
 
 const std::string kConfig = std::string(PHASMID_SOURCE_DIR) + "/configs/fit_cruse1980_switch.toml";
 
-bool has_pair(const Features& f, const std::string& pair) {
-  return std::find(f.in_phase_pairs.begin(), f.in_phase_pairs.end(), pair) != f.in_phase_pairs.end();
-}
-
-Parameters at_period(Parameters p, double period_ms) {
-  p.set("retraction_rate", retraction_rate_for_period(p, period_ms));
-  p.set("duration_ms", 60 * period_ms);
-  return p;
-}
-
 // All ten Table 2 starting positions lock into one pattern with L1-R2 and L2-R3 in phase, and
 // the left and right lags agree within one raster step.
 void expect_text_statements(const Parameters& fitted, double period, Stepping stepping) {
@@ -40,12 +30,27 @@ void expect_text_statements(const Parameters& fitted, double period, Stepping st
     const std::string where = "period " + std::to_string(period) + " ms, start " + std::to_string(start) +
                               (stepping == Stepping::Raster ? " (raster)" : " (continuous)");
     ASSERT_TRUE(f.locked) << where;
-    EXPECT_TRUE(has_pair(f, "L1-R2")) << where;
-    EXPECT_TRUE(has_pair(f, "L2-R3")) << where;
+    EXPECT_TRUE(in_phase(f, "L1-R2")) << where;
+    EXPECT_TRUE(in_phase(f, "L2-R3")) << where;
     EXPECT_LE(std::abs(f.lag_R3_R1_ms - f.lag_L3_L1_ms), 20.0) << where;
     if (start == 1) first = f;
     else EXPECT_TRUE(same_pattern(first, f, 20.0)) << where;
   }
+}
+
+// Runs the fit as `phasmid fit` does and checks that it converged and that every weighted
+// residual is within its tolerance; returns the parameters at the optimum.
+Parameters fit_and_check(CruseFit& cf) {
+  cf.spec.optimizer.progress = false;
+  const CruseFitProblem& problem = *cf.problem;
+  const fit::FitResult result = fit::run_fit(problem, cf.spec);
+  const fit::FitSummary& best = result.best();
+  EXPECT_TRUE(best.usable);
+  EXPECT_TRUE(best.converged) << best.termination << " " << best.message;
+  std::vector<double> r(problem.num_residuals());
+  EXPECT_TRUE(problem.evaluate(best.x.data(), r.data(), nullptr));
+  for (size_t i = 0; i < r.size(); ++i) EXPECT_LE(std::abs(r[i]), 1.0) << problem.residual_labels()[i];
+  return problem.parameters_at(best.x.data());
 }
 
 }  // namespace
@@ -55,7 +60,6 @@ void expect_text_statements(const Parameters& fitted, double period, Stepping st
 // event-exact model the fit used and in Cruse's 20 ms raster.
 TEST(Cruse1980Fit, FittedSwitchNodesMeetTheTextStatements) {
   CruseFit cf = load_cruse_fit(kConfig, {}, {});
-  cf.spec.optimizer.progress = false;
   const CruseFitProblem& problem = *cf.problem;
   ASSERT_EQ(problem.num_parameters(), 12u);
   std::vector<double> r0(problem.num_residuals());
@@ -64,15 +68,7 @@ TEST(Cruse1980Fit, FittedSwitchNodesMeetTheTextStatements) {
   for (double v : r0) start_cost += 0.5 * v * v;
   EXPECT_GT(start_cost, 100.0) << "the neutral start should violate the statements";
 
-  const fit::FitResult result = fit::run_fit(problem, cf.spec);
-  const fit::FitSummary& best = result.best();
-  ASSERT_TRUE(best.usable);
-  EXPECT_TRUE(best.converged) << best.termination << " " << best.message;
-  std::vector<double> r(problem.num_residuals());
-  ASSERT_TRUE(problem.evaluate(best.x.data(), r.data(), nullptr));
-  for (size_t i = 0; i < r.size(); ++i) EXPECT_LE(std::abs(r[i]), 1.0) << problem.residual_labels()[i];
-
-  const Parameters fitted = problem.parameters_at(best.x.data());
+  const Parameters fitted = fit_and_check(cf);
   // "As the speed increases the 'switch position' moves anteriorly": non-decreasing in the period.
   const auto& nodes = switch_node_periods();
   for (const std::string s : {"SL", "SR", "SL1R1"})
@@ -109,16 +105,7 @@ TEST(Cruse1980Fit, LagTargetsDetermineTheNodes) {
   fit::FitOverrides ov;
   ov.target_set = "closed_form_lag";
   CruseFit cf = load_cruse_fit(kConfig, {}, ov);
-  cf.spec.optimizer.progress = false;
-  const CruseFitProblem& problem = *cf.problem;
-  const fit::FitResult result = fit::run_fit(problem, cf.spec);
-  const fit::FitSummary& best = result.best();
-  ASSERT_TRUE(best.usable);
-  EXPECT_TRUE(best.converged) << best.termination << " " << best.message;
-  std::vector<double> r(problem.num_residuals());
-  ASSERT_TRUE(problem.evaluate(best.x.data(), r.data(), nullptr));
-  for (size_t i = 0; i < r.size(); ++i) EXPECT_LE(std::abs(r[i]), 1.0) << problem.residual_labels()[i];
-  const Parameters fitted = problem.parameters_at(best.x.data());
+  const Parameters fitted = fit_and_check(cf);
   for (double P : switch_node_periods()) {
     const std::string at = ".at_" + std::to_string(int(P)) + "ms";
     const double delta = 100.0 + (P - 200.0) / 4.0;
