@@ -7,6 +7,8 @@
 #include "app/verb.hpp"
 #include "common/error.hpp"
 #include "config/config.hpp"
+#include "cruse/cruse1980_fit.hpp"
+#include "cruse/cruse1980_output.hpp"
 #include "fit/fit_config.hpp"
 #include "fit/fit_run.hpp"
 #include "io/h5_file.hpp"
@@ -20,18 +22,16 @@ struct FitArgs {
   bool quiet = false;
 };
 
-int run_fit_verb(const FitArgs& a) {
-  config::Config cfg = config::load_config(a.config);
-  auto model = config::build_model(cfg, a.sets);
-  fit::FitSpec spec = fit::load_fit_spec(cfg, *model, a.ov);
+// The fit itself, the same for every model: optimise, write /fit, print the summary.
+int fit_and_report(const FitArgs& a, const fit::ResidualProblem& problem, fit::FitSpec& spec,
+                   const std::string& resolved_config, const std::string& model_attribute) {
   spec.optimizer.progress = !a.quiet;
   if (!a.profile.empty()) spec.profile = a.profile;
-  spec.problem.solver.progress = false;
-  fit::FitProblem problem(*model, spec.parameters, spec.targets, spec.problem);
   const std::string out = a.out.empty() ? "fit.h5" : a.out;
   io::H5Writer w(out);  // opened before the work so an unwritable path fails early
   fit::FitResult result = fit::run_fit(problem, spec);
-  w.write_run_info({config::resolved_config_text(cfg, a.sets), command_line()});
+  w.write_run_info({resolved_config, command_line()});
+  if (!model_attribute.empty()) w.set_attribute("/", "model", model_attribute);
   fit::write_fit_h5(w, problem, spec, result);
   w.commit();
   const fit::FitSummary& b = result.best();
@@ -44,10 +44,23 @@ int run_fit_verb(const FitArgs& a) {
   return 0;
 }
 
-const RegisterVerb reg{{"fit", "Fit parameters to feature targets, switch conditions (2.42) or kinematic recordings",
+int run_fit_verb(const FitArgs& a) {
+  config::Config cfg = config::load_config(a.config);
+  if (cruse::is_cruse_config(cfg)) {
+    cruse::CruseFit cf = cruse::load_cruse_fit(a.config, a.sets, a.ov);
+    return fit_and_report(a, *cf.problem, cf.spec, cruse::resolved_config(cf.config), "cruse1980");
+  }
+  auto model = config::build_model(cfg, a.sets);
+  fit::FitSpec spec = fit::load_fit_spec(cfg, *model, a.ov);
+  spec.problem.solver.progress = false;
+  fit::FitProblem problem(*model, spec.parameters, spec.targets, spec.problem);
+  return fit_and_report(a, problem, spec, config::resolved_config_text(cfg, a.sets), "");
+}
+
+const RegisterVerb reg{{"fit", "Fit parameters to feature targets, switch conditions (2.42) or kinematic recordings; cruse1980 configs: Cruse features",
                         [](CLI::App& sub) {
                           auto a = std::make_shared<FitArgs>();
-                          sub.add_option("config", a->config, "scenario config (TOML) with an optional [fit] section")->required();
+                          sub.add_option("config", a->config, "scenario config (TOML) with an optional [fit] section, or a cruse1980 config with [fit]")->required();
                           sub.add_option("--data", a->ov.data, "kinematic recording (CSV: time_ms, <leg>.<joint> in deg)");
                           sub.add_option("--data-format", a->ov.data_format, "csv (default) or anipose");
                           sub.add_option("--parameters", a->ov.parameters, "PEtab parameter table (TSV)");

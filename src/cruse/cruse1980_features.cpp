@@ -80,6 +80,10 @@ Features measure(const Trajectory& run, const Parameters& p) {
   return f;
 }
 
+bool in_phase(const Features& f, const std::string& pair) {
+  return std::find(f.in_phase_pairs.begin(), f.in_phase_pairs.end(), pair) != f.in_phase_pairs.end();
+}
+
 bool same_pattern(const Features& a, const Features& b, double tolerance_ms) {
   if (!a.locked || !b.locked) return false;
   if (std::abs(a.period_ms - b.period_ms) > tolerance_ms) return false;

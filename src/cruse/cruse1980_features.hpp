@@ -24,6 +24,9 @@ struct Features {
 
 Features measure(const Trajectory& run, const Parameters& p);
 
+// True if `pair` (e.g. "L1-R2") is among the run's in-phase pairs.
+bool in_phase(const Features& f, const std::string& pair);
+
 // True when two runs show the same coordination pattern: both locked, same period and same
 // phases within `tolerance_ms`.
 bool same_pattern(const Features& a, const Features& b, double tolerance_ms);

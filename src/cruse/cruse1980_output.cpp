@@ -16,7 +16,7 @@ nlohmann::json features_json(const Features& f) {
 }
 
 // The resolved config: the file text followed by every parameter value actually used.
-static std::string resolved_config(const LoadedConfig& config) {
+std::string resolved_config(const LoadedConfig& config) {
   std::string text = config.text + "\n# resolved [cruse1980] values\n";
   text += std::string("# gait = \"") + (config.parameters.gait == Gait::I ? "I" : "II") + "\"\n";
   text += std::string("# time_stepping = \"") +
@@ -31,6 +31,11 @@ void write_run(const std::string& path, const LoadedConfig& config, const Trajec
   // The parameters actually used: --set overrides are part of the run, not of the file text.
   w.write_run_info({resolved_config(config), command});
   w.set_attribute("/", "model", "cruse1980");
+  write_run_contents(w, config.parameters, run, f);
+  w.commit();
+}
+
+void write_run_contents(io::H5Writer& w, const Parameters& p, const Trajectory& run, const Features& f) {
   w.write("/trajectory/time", run.time_ms, "ms");
   for (int leg = 0; leg < kLegCount; ++leg) {
     const auto& name = leg_names()[leg];
@@ -40,10 +45,10 @@ void write_run(const std::string& path, const LoadedConfig& config, const Trajec
   }
   std::vector<std::string> names, units;
   std::vector<double> values;
-  for (const auto& p : config.parameters.all()) {
-    names.push_back(p.name);
-    values.push_back(p.value);
-    units.push_back(p.unit);
+  for (const auto& q : p.all()) {
+    names.push_back(q.name);
+    values.push_back(q.value);
+    units.push_back(q.unit);
   }
   w.write("/parameters/names", names);
   w.write("/parameters/values", values, "see /parameters/units");
@@ -55,7 +60,6 @@ void write_run(const std::string& path, const LoadedConfig& config, const Trajec
   std::vector<double> phases(f.phase.begin(), f.phase.end());
   w.write("/features/phase", phases, "1 (fraction of period after OL1 onset; legs L1..R3)");
   w.write("/features/in_phase_pairs", f.in_phase_pairs);
-  w.commit();
 }
 
 }  // namespace phasmid::cruse

@@ -5,10 +5,20 @@
 
 #include "cruse/cruse1980_features.hpp"
 
-namespace phasmid::cruse {
+namespace phasmid {
+namespace io {
+class H5Writer;
+}
+
+namespace cruse {
 
 nlohmann::json features_json(const Features& f);
+// The config text followed by every resolved parameter value as comments.
+std::string resolved_config(const LoadedConfig& config);
+// /trajectory, /events, /parameters and /features of one run (no root attributes).
+void write_run_contents(io::H5Writer& w, const Parameters& p, const Trajectory& run, const Features& f);
 void write_run(const std::string& path, const LoadedConfig& config, const Trajectory& run, const Features& f,
                const std::string& command);
 
-}  // namespace phasmid::cruse
+}  // namespace cruse
+}  // namespace phasmid

@@ -11,12 +11,6 @@ namespace {
 
 constexpr double kSweepCycles = 60;
 
-bool has_pair(const Features& f, const std::string& pair) {
-  for (const auto& p : f.in_phase_pairs)
-    if (p == pair) return true;
-  return false;
-}
-
 std::vector<double> grid(double from, double to, double step) {
   std::vector<double> v;
   for (int i = 0; from + i * step <= to + 1e-9; ++i) v.push_back(std::round((from + i * step) * 1e6) / 1e6);
@@ -32,18 +26,23 @@ double retraction_rate_for_period(const Parameters& p, double period_ms) {
   return amplitude / (period_ms - amplitude / p.get("protraction_rate"));
 }
 
+Parameters at_period(const Parameters& base, double period_ms, double cycles) {
+  Parameters p = base;
+  p.set("retraction_rate", retraction_rate_for_period(base, period_ms));
+  p.set("duration_ms", cycles * period_ms);
+  return p;
+}
+
 bool is_stable(const Parameters& base, const std::vector<double>& periods_ms) {
   const double tol = base.get("analysis.in_phase_tolerance_ms");
   for (double period : periods_ms) {
-    Parameters p = base;
-    p.set("retraction_rate", retraction_rate_for_period(base, period));
     // Give every speed the same number of cycles to settle (docs/cruse1980.md).
-    p.set("duration_ms", kSweepCycles * period);
+    Parameters p = at_period(base, period, kSweepCycles);
     Features first;
     for (int start = 1; start <= 10; ++start) {
       p.set("start_position", start);
       const Features f = measure(simulate(p), p);
-      if (!f.locked || !has_pair(f, "L1-R2") || !has_pair(f, "L2-R3")) return false;
+      if (!f.locked || !in_phase(f, "L1-R2") || !in_phase(f, "L2-R3")) return false;
       if (start == 1) first = f;
       else if (!same_pattern(first, f, tol)) return false;
     }

@@ -24,6 +24,8 @@ bool is_stable(const Parameters& base, const std::vector<double>& periods_ms);
 
 // The retraction rate giving nominal period `period_ms` with the parameters' gait.
 double retraction_rate_for_period(const Parameters& p, double period_ms);
+// `base` walking at nominal period `period_ms` for `cycles` periods (sweep, fit and tests).
+Parameters at_period(const Parameters& base, double period_ms, double cycles = 60);
 
 SweepAxis sweep_axis(const Parameters& base, const std::string& parameter, const std::vector<double>& values,
                      const std::vector<double>& periods_ms);

@@ -18,7 +18,7 @@ namespace phasmid::fit {
 namespace {
 
 struct Shared {
-  const FitProblem* problem;
+  const ResidualProblem* problem;
   mutable std::string last_error;
   mutable long failed = 0, calls = 0, jacobian_calls = 0;
   bool eval(const double* x, double* r, double* J) const {
@@ -118,7 +118,7 @@ class History : public ceres::IterationCallback {
 
 }  // namespace
 
-FitSummary optimize_ceres(const FitProblem& problem, const std::vector<double>& x0, const OptimizerOptions& o) {
+FitSummary optimize_ceres(const ResidualProblem& problem, const std::vector<double>& x0, const OptimizerOptions& o) {
   // Ceres logs a failed evaluation through glog even with logging_type = SILENT; phasmid reports
   // failures in the summary instead (the CLI contract is one line on stderr per error).
   static const bool quiet_glog = [] {

@@ -30,8 +30,10 @@ long integer(const config::Config& cfg, const toml::node& n, const std::string& 
   return static_cast<long>(*v);
 }
 
+}  // namespace
+
 // Tables of [[fit.x]] (array of tables) or [fit.x] (one table).
-std::vector<const toml::table*> tables(const config::Config& cfg, const toml::table& fit, const std::string& key) {
+std::vector<const toml::table*> fit_tables(const config::Config& cfg, const toml::table& fit, const std::string& key) {
   std::vector<const toml::table*> out;
   const toml::node* n = fit.get(key);
   if (!n) return out;
@@ -48,26 +50,37 @@ std::vector<const toml::table*> tables(const config::Config& cfg, const toml::ta
   return out;
 }
 
-bool in_set(const config::Config& cfg, const toml::table& t, const std::string& set) {
+namespace {
+
+// The target sets a target table belongs to: `set = "NAME"` or `set = ["A", "B"]`; default "default".
+std::vector<std::string> target_sets_of(const config::Config& cfg, const toml::table& t) {
   const toml::node* n = t.get("set");
-  std::string s = n ? text(cfg, *n, "set") : "default";
-  return s == set;
+  if (!n) return {"default"};
+  std::vector<std::string> out;
+  if (auto a = n->as_array()) {
+    for (auto& e : *a) out.push_back(text(cfg, e, "set"));
+    if (out.empty()) throw Error(where(cfg, *n) + ": 'set' must name at least one target set");
+  } else {
+    out.push_back(text(cfg, *n, "set"));
+  }
+  return out;
 }
 
-std::set<std::string> sets_named(const config::Config& cfg, const toml::table& fit) {
+}  // namespace
+
+bool in_target_set(const config::Config& cfg, const toml::table& t, const std::string& set) {
+  const auto sets = target_sets_of(cfg, t);
+  return std::find(sets.begin(), sets.end(), set) != sets.end();
+}
+
+namespace {
+
+std::set<std::string> sets_named(const config::Config& cfg, const toml::table& fit, const std::vector<std::string>& keys) {
   std::set<std::string> s;
-  for (const char* key : {"feature", "switch"})
-    for (auto* t : tables(cfg, fit, key)) {
-      const toml::node* n = t->get("set");
-      s.insert(n ? text(cfg, *n, "set") : "default");
-    }
+  for (const auto& key : keys)
+    for (auto* t : fit_tables(cfg, fit, key))
+      for (auto& name : target_sets_of(cfg, *t)) s.insert(name);
   return s;
-}
-
-bool glob_matches(const std::string& pat, const std::string& s, size_t i = 0, size_t j = 0) {
-  if (i == pat.size()) return j == s.size();
-  if (pat[i] == '*') return glob_matches(pat, s, i + 1, j) || (j < s.size() && glob_matches(pat, s, i, j + 1));
-  return j < s.size() && pat[i] == s[j] && glob_matches(pat, s, i + 1, j + 1);
 }
 
 bool is_param_spec(const toml::table& t) {
@@ -77,13 +90,13 @@ bool is_param_spec(const toml::table& t) {
 }
 
 void inline_parameters(const config::Config& cfg, const toml::table& t, const std::string& prefix,
-                       const model::OdeModel& model, std::vector<std::pair<size_t, FitParameter>>& out) {
+                       const ModelValue& model_value, std::vector<std::pair<size_t, FitParameter>>& out) {
   for (auto& [k, v] : t) {
     std::string name = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
     const toml::table* sub = v.as_table();
     if (!sub) throw Error(where(cfg, v) + ": [fit.parameters] entry '" + name + "' must be a table {scale, lower, upper, nominal, estimate}");
     if (!is_param_spec(*sub)) {
-      inline_parameters(cfg, *sub, name, model, out);
+      inline_parameters(cfg, *sub, name, model_value, out);
       continue;
     }
     check_keys(cfg, *sub, "fit.parameters." + name, {"scale", "lower", "upper", "nominal", "estimate"});
@@ -98,15 +111,9 @@ void inline_parameters(const config::Config& cfg, const toml::table& t, const st
       }
     }
     if (auto n = sub->get("estimate")) p.estimate = boolean(cfg, *n, "estimate");
-    // Default start: the model's value (for a '*' pattern, that of the first match).
-    double model_value = 0.0;
-    for (auto& mp : model.parameters().all())
-      if (mp.name == name || (name.find('*') != std::string::npos && glob_matches(name, mp.name))) {
-        model_value = mp.value;
-        break;
-      }
+    // Default start: the model's value (for a pattern, that of the first match).
     if (auto n = sub->get("nominal")) p.nominal = number(cfg, *n, "nominal");
-    else p.nominal = model_value;
+    else p.nominal = model_value(name);
     if (auto n = sub->get("lower")) p.lower = number(cfg, *n, "lower");
     else if (p.estimate) throw Error(p.origin + ": estimated parameter '" + name + "' needs lower");
     else p.lower = p.nominal;
@@ -132,21 +139,15 @@ std::string resolve_path(const config::Config& cfg, const std::string& path) {
   return (fs::path(cfg.path).parent_path() / p).lexically_normal().string();
 }
 
-FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, const FitOverrides& ov) {
-  FitSpec spec;
-  config::SimulationSettings sim = config::simulation_settings(cfg);
-  spec.problem.solver = sim.solver;
+const toml::table& fit_section(const config::Config& cfg) {
   static const toml::table kEmpty;
   const toml::table* fp = cfg.table["fit"].as_table();
   if (cfg.table.contains("fit") && !fp) throw Error(cfg.path + ": [fit] must be a table");
-  const toml::table& fit = fp ? *fp : kEmpty;
-  check_keys(cfg, fit,
-             "fit", {"description", "optimizer", "multistart", "sampling", "seed", "threads", "max_iterations",
-                     "max_evaluations", "function_tolerance", "parameter_tolerance", "gradient_tolerance", "initial_trust_region_radius", "loss",
-                     "loss_scale", "t_end_ms", "discard_ms", "absolute_sigma", "profile", "profile_points",
-                     "profile_span", "target_set", "output_dt_ms", "parameter_table", "parameters", "feature",
-                     "switch", "data", "min_swing_deg", "min_swing_fraction", "sensitivity_error_control"});
+  return fp ? *fp : kEmpty;
+}
 
+void load_fit_common(const config::Config& cfg, const toml::table& fit, const FitOverrides& ov,
+                     const std::vector<std::string>& target_keys, const ModelValue& model_value, FitSpec& spec) {
   // Optimizer and multistart.
   auto get = [&](const char* k) { return fit.get(k); };
   try {
@@ -211,7 +212,7 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
   if (auto n = get("target_set")) spec.target_set = text(cfg, *n, "target_set");
   if (!ov.target_set.empty()) spec.target_set = ov.target_set;
   {
-    std::set<std::string> sets = sets_named(cfg, fit);
+    std::set<std::string> sets = sets_named(cfg, fit, target_keys);
     if (!sets.empty() && !sets.count(spec.target_set)) {
       std::string list;
       for (auto& s : sets) list += (list.empty() ? "" : ", ") + s;
@@ -219,10 +220,65 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
     }
   }
 
+  // Parameters: --parameters, else the config's table file plus inline entries (inline wins).
+  if (!ov.parameters.empty()) {
+    spec.parameters = read_parameter_table(ov.parameters);
+    spec.inputs.push_back(ov.parameters);
+  } else {
+    std::vector<FitParameter> table;
+    std::vector<std::pair<size_t, FitParameter>> inl;
+    if (auto n = get("parameter_table")) {
+      std::string path = resolve_path(cfg, text(cfg, *n, "parameter_table"));
+      table = read_parameter_table(path);
+      spec.inputs.push_back(path);
+    }
+    if (auto n = get("parameters")) {
+      auto t = n->as_table();
+      if (!t) throw Error(where(cfg, *n) + ": [fit.parameters] must be a table of NAME = {scale, lower, upper, nominal, estimate}");
+      inline_parameters(cfg, *t, "", model_value, inl);
+      // TOML tables iterate by key; keep the order of the file.
+      std::stable_sort(inl.begin(), inl.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    }
+    for (auto& [line, p] : inl) {
+      bool replaced = false;
+      for (auto& q : table)
+        if (q.id == p.id) {
+          q = p;
+          replaced = true;
+        }
+      if (!replaced) table.push_back(p);
+    }
+    spec.parameters = table;
+  }
+  if (spec.parameters.empty())
+    throw Error(cfg.path + ": no fit parameters (give --parameters PARAMS.tsv, fit.parameter_table or [fit.parameters])");
+}
+
+FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, const FitOverrides& ov) {
+  FitSpec spec;
+  config::SimulationSettings sim = config::simulation_settings(cfg);
+  spec.problem.solver = sim.solver;
+  const toml::table& fit = fit_section(cfg);
+  check_keys(cfg, fit,
+             "fit", {"description", "optimizer", "multistart", "sampling", "seed", "threads", "max_iterations",
+                     "max_evaluations", "function_tolerance", "parameter_tolerance", "gradient_tolerance", "initial_trust_region_radius", "loss",
+                     "loss_scale", "t_end_ms", "discard_ms", "absolute_sigma", "profile", "profile_points",
+                     "profile_span", "target_set", "output_dt_ms", "parameter_table", "parameters", "feature",
+                     "switch", "data", "min_swing_deg", "min_swing_fraction", "sensitivity_error_control"});
+
+  load_fit_common(cfg, fit, ov, {"feature", "switch"},
+                  [&](const std::string& name) {
+                    for (auto& mp : model.parameters().all())
+                      if (parameter_id_matches(name, mp.name)) return mp.value;
+                    return 0.0;
+                  },
+                  spec);
+  auto get = [&](const char* k) { return fit.get(k); };
+
   // Feature targets and switch conditions.
-  for (auto* t : tables(cfg, fit, "feature")) {
+  for (auto* t : fit_tables(cfg, fit, "feature")) {
     check_keys(cfg, *t, "fit.feature", {"name", "value", "tolerance", "set"});
-    if (!in_set(cfg, *t, spec.target_set)) continue;
+    if (!in_target_set(cfg, *t, spec.target_set)) continue;
     FeatureTarget f;
     f.origin = where(cfg, *t);
     const toml::node* nn = t->get("name");
@@ -233,10 +289,10 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
     f.tolerance = number(cfg, *t->get("tolerance"), "tolerance");
     spec.targets.features.push_back(f);
   }
-  for (auto* t : tables(cfg, fit, "switch")) {
+  for (auto* t : fit_tables(cfg, fit, "switch")) {
     check_keys(cfg, *t, "fit.switch", {"angle", "time_ms", "angle_deg", "angle_tolerance_deg", "velocity_tolerance_deg_s",
                                         "acceleration_tolerance_deg_s2", "set"});
-    if (!in_set(cfg, *t, spec.target_set)) continue;
+    if (!in_target_set(cfg, *t, spec.target_set)) continue;
     SwitchCondition s;
     s.origin = where(cfg, *t);
     for (const char* req : {"angle", "time_ms", "angle_deg", "angle_tolerance_deg"})
@@ -253,7 +309,7 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
   }
 
   // Kinematic data.
-  auto data_tables = tables(cfg, fit, "data");
+  auto data_tables = fit_tables(cfg, fit, "data");
   if (!ov.data.empty() && data_tables.size() > 1)
     throw Error("--data: the config lists " + std::to_string(data_tables.size()) + " data sets; edit the config instead");
   auto read_data = [&](const toml::table* t, const std::string& file_override) {
@@ -290,39 +346,6 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
   if (!ov.data.empty()) read_data(data_tables.empty() ? nullptr : data_tables[0], ov.data);
   else
     for (auto* t : data_tables) read_data(t, "");
-
-  // Parameters: --parameters, else the config's table file plus inline entries (inline wins).
-  if (!ov.parameters.empty()) {
-    spec.parameters = read_parameter_table(ov.parameters);
-    spec.inputs.push_back(ov.parameters);
-  } else {
-    std::vector<FitParameter> table;
-    std::vector<std::pair<size_t, FitParameter>> inl;
-    if (auto n = get("parameter_table")) {
-      std::string path = resolve_path(cfg, text(cfg, *n, "parameter_table"));
-      table = read_parameter_table(path);
-      spec.inputs.push_back(path);
-    }
-    if (auto n = get("parameters")) {
-      auto t = n->as_table();
-      if (!t) throw Error(where(cfg, *n) + ": [fit.parameters] must be a table of NAME = {scale, lower, upper, nominal, estimate}");
-      inline_parameters(cfg, *t, "", model, inl);
-      // TOML tables iterate by key; keep the order of the file.
-      std::stable_sort(inl.begin(), inl.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    }
-    for (auto& [line, p] : inl) {
-      bool replaced = false;
-      for (auto& q : table)
-        if (q.id == p.id) {
-          q = p;
-          replaced = true;
-        }
-      if (!replaced) table.push_back(p);
-    }
-    spec.parameters = table;
-  }
-  if (spec.parameters.empty())
-    throw Error(cfg.path + ": no fit parameters (give --parameters PARAMS.tsv, fit.parameter_table or [fit.parameters])");
 
   // Horizon: [fit] overrides [simulation] for feature targets; kinematic data set their own.
   spec.problem.discard_ms = sim.discard_ms;

@@ -2,6 +2,7 @@
 // The [fit] section of a scenario config (docs/fit.md) and the command-line overrides of
 // `phasmid fit`. Other verbs ignore [fit]; `phasmid fit` ignores sections it does not use.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,21 @@ struct FitOverrides {
 
 // `model` must be the model built from the same config (nominal values default to its values).
 FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, const FitOverrides& overrides = {});
+
+// Pieces of the [fit] parser for model-specific loaders (cruse::load_cruse_fit).
+// The [fit] table (empty if absent); [[fit.KEY]] / [fit.KEY] tables; whether a target table
+// belongs to the chosen target set (its `set`, default "default").
+const toml::table& fit_section(const config::Config& cfg);
+std::vector<const toml::table*> fit_tables(const config::Config& cfg, const toml::table& fit, const std::string& key);
+bool in_target_set(const config::Config& cfg, const toml::table& t, const std::string& set);
+// The keys every model shares: optimiser and its stop rules, multistart, absolute_sigma,
+// profiles, output_dt_ms, target_set (checked against the sets named by the [[fit.KEY]]
+// tables of `target_keys`) and the parameters (--parameters, parameter_table,
+// [fit.parameters] whose nominal defaults to model_value(id)). The caller checks which keys
+// its model allows.
+using ModelValue = std::function<double(const std::string& parameter_id)>;
+void load_fit_common(const config::Config& cfg, const toml::table& fit, const FitOverrides& overrides,
+                     const std::vector<std::string>& target_keys, const ModelValue& model_value, FitSpec& spec);
 
 // Resolves a path named in a config: absolute, relative to the config's directory, or (for
 // embedded configs) relative to the working directory or the source tree.

@@ -5,6 +5,8 @@
 #include <set>
 
 #include "common/error.hpp"
+#include "io/h5_file.hpp"
+#include "io/trajectory_writer.hpp"
 #include "model/leg_tables.hpp"
 
 namespace phasmid::fit {
@@ -42,16 +44,8 @@ std::set<std::string> known_features(const model::OdeModel& m) {
   return f;
 }
 
-// Model parameters named by a parameterId: the name itself, or with '*' (any run of
-// characters) every matching name, all tied to one fitted value.
-bool glob_match(const char* pat, const char* s) {
-  if (*pat == '\0') return *s == '\0';
-  if (*pat == '*') return glob_match(pat + 1, s) || (*s && glob_match(pat, s + 1));
-  return *s && *pat == *s && glob_match(pat + 1, s + 1);
-}
-
 std::vector<size_t> match_parameters(const model::ParameterSet& ps, const std::string& id, const std::string& w) {
-  if (id.find('*') == std::string::npos) {
+  if (!is_parameter_pattern(id)) {
     try {
       return {ps.index(id)};
     } catch (const Error& e) {
@@ -60,7 +54,7 @@ std::vector<size_t> match_parameters(const model::ParameterSet& ps, const std::s
   }
   std::vector<size_t> ks;
   for (size_t k = 0; k < ps.size(); ++k)
-    if (glob_match(id.c_str(), ps.at(k).name.c_str())) ks.push_back(k);
+    if (parameter_id_matches(id, ps.at(k).name)) ks.push_back(k);
   if (ks.empty()) throw Error(w + "no model parameter matches '" + id + "'; `phasmid params CONFIG` lists them");
   return ks;
 }
@@ -86,7 +80,8 @@ struct FitProblem::Run {
 
 FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> parameters, Targets targets,
                        ProblemSettings settings)
-    : model_(model), params_(std::move(parameters)), targets_(std::move(targets)), settings_(settings) {
+    : model_(model), targets_(std::move(targets)), settings_(settings) {
+  params_ = std::move(parameters);
   if (targets_.empty()) throw Error("the fit has no targets (give [[fit.feature]], [[fit.switch]] or data)");
   const auto& ps = model_.parameters();
   base_p_ = ps.values();
@@ -206,33 +201,6 @@ std::vector<std::string> FitProblem::tied_parameters(size_t j) const {
   std::vector<std::string> n;
   for (size_t k : est_map_.at(j).model_indices) n.push_back(model_.parameters().at(k).name);
   return n;
-}
-
-std::vector<std::string> FitProblem::parameter_names() const {
-  std::vector<std::string> n;
-  for (auto& p : est_) n.push_back(p.id);
-  return n;
-}
-
-std::vector<double> FitProblem::start() const {
-  std::vector<double> x;
-  for (auto& p : est_) x.push_back(to_scaled(p.scale, p.nominal));
-  return x;
-}
-std::vector<double> FitProblem::lower() const {
-  std::vector<double> x;
-  for (auto& p : est_) x.push_back(to_scaled(p.scale, p.lower));
-  return x;
-}
-std::vector<double> FitProblem::upper() const {
-  std::vector<double> x;
-  for (auto& p : est_) x.push_back(to_scaled(p.scale, p.upper));
-  return x;
-}
-std::vector<double> FitProblem::to_linear(const std::vector<double>& x) const {
-  std::vector<double> t;
-  for (size_t j = 0; j < est_.size(); ++j) t.push_back(from_scaled(est_[j].scale, x[j]));
-  return t;
 }
 
 std::vector<double> FitProblem::model_parameters(const double* x) const {
@@ -444,6 +412,29 @@ std::vector<FitProblem::KinematicComparison> FitProblem::kinematic_comparison(co
     out.push_back(std::move(c));
   }
   return out;
+}
+
+void FitProblem::write_model_output(io::H5Writer& out, const double* x, bool usable, double output_dt_ms) const {
+  if (!usable) {
+    io::write_parameters(out, model_, model_parameters(x));
+    return;
+  }
+  auto comps = kinematic_comparison(x);
+  for (size_t i = 0; i < comps.size(); ++i) {
+    const std::string suffix = i == 0 ? "" : "_" + std::to_string(i);
+    out.write("/fit/data" + suffix + "/time", comps[i].time_ms, "ms");
+    out.write("/fit/model" + suffix + "/time", comps[i].time_ms, "ms");
+    for (size_t c = 0; c < comps[i].channels.size(); ++c) {
+      out.write("/fit/data" + suffix + "/" + comps[i].channels[c], comps[i].data_deg[c], "deg");
+      out.write("/fit/model" + suffix + "/" + comps[i].channels[c], comps[i].model_deg[c], "deg");
+    }
+  }
+  solver::SolveResult tr = simulate(x, output_dt_ms);
+  io::write_trajectory(out, model_, tr);
+  io::write_parameters(out, model_, model_parameters(x));
+  features::FeatureOptions fo = settings_.feature_options;
+  fo.discard_ms = settings_.discard_ms;
+  features::write_features_h5(out, features::compute_features(model_, tr, fo));
 }
 
 }  // namespace phasmid::fit

@@ -10,6 +10,7 @@
 
 #include "features/features.hpp"
 #include "fit/parameter_table.hpp"
+#include "fit/residual_problem.hpp"
 #include "fit/targets.hpp"
 #include "model/ode_model.hpp"
 #include "solver/simulator.hpp"
@@ -23,7 +24,7 @@ struct ProblemSettings {
   features::FeatureOptions feature_options;  // discard_ms overwritten by the field above
 };
 
-class FitProblem {
+class FitProblem : public ResidualProblem {
  public:
   // `parameters` lists every parameter the fit touches; fixed ones (estimate = false) are
   // set to their nominal value. Throws Error for unknown names, parameters whose forward
@@ -32,27 +33,17 @@ class FitProblem {
   FitProblem(const model::OdeModel& model, std::vector<FitParameter> parameters, Targets targets,
              ProblemSettings settings);
 
-  size_t num_parameters() const { return est_.size(); }   // estimated
-  size_t num_residuals() const { return labels_.size(); }
-  const std::vector<std::string>& residual_labels() const { return labels_; }
-  const std::vector<FitParameter>& estimated() const { return est_; }
-  const std::vector<FitParameter>& all_parameters() const { return params_; }
-  std::vector<std::string> parameter_names() const;
-  std::string parameter_unit(size_t j) const;                 // of estimated parameter j
-  std::vector<std::string> tied_parameters(size_t j) const;   // model parameters it sets ('*' ids tie several)
-
-  // Scaled start (nominal values) and bounds.
-  std::vector<double> start() const;
-  std::vector<double> lower() const;
-  std::vector<double> upper() const;
-  // Linear-scale values of the estimated parameters.
-  std::vector<double> to_linear(const std::vector<double>& x) const;
+  std::string parameter_unit(size_t j) const override;
+  std::vector<std::string> tied_parameters(size_t j) const override;  // '*' ids tie several
   // The model's full parameter vector for scaled estimates x.
   std::vector<double> model_parameters(const double* x) const;
 
   // Residuals r (num_residuals) and, if J != nullptr, dr/dx (row-major m x n). Returns false
   // (with the reason in *error) if the simulation fails or a feature cannot be computed.
-  bool evaluate(const double* x, double* r, double* J, std::string* error = nullptr) const;
+  bool evaluate(const double* x, double* r, double* J, std::string* error = nullptr) const override;
+
+  // /fit/model (kinematic comparison), /trajectory, /parameters, /features.
+  void write_model_output(io::H5Writer& out, const double* x, bool usable, double output_dt_ms) const override;
 
   // Central finite-difference Jacobian (row-major), for tests and benchmarks. Relative step h.
   bool jacobian_fd(const double* x, double* J, double h = 1e-6, std::string* error = nullptr) const;
@@ -79,7 +70,6 @@ class FitProblem {
   Run run(const double* x, bool with_sens) const;
 
   const model::OdeModel& model_;
-  std::vector<FitParameter> params_, est_;
   Targets targets_;
   ProblemSettings settings_;
   std::vector<double> base_p_;
@@ -92,7 +82,6 @@ class FitProblem {
   std::vector<double> offset_fixed_;
   std::vector<size_t> switch_channel_, kin_channel_base_;
   std::vector<std::vector<size_t>> kin_channels_;  // per kinematic target: model angle channel per data channel
-  std::vector<std::string> labels_;
   mutable std::atomic<long> evaluations_{0}, jacobian_evaluations_{0};
 };
 

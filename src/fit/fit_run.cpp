@@ -7,13 +7,11 @@
 #include <sstream>
 
 #include "common/error.hpp"
-#include "features/features.hpp"
 #include "io/h5_file.hpp"
-#include "io/trajectory_writer.hpp"
 
 namespace phasmid::fit {
 
-FitResult run_fit(const FitProblem& problem, const FitSpec& spec) {
+FitResult run_fit(const ResidualProblem& problem, const FitSpec& spec) {
   std::vector<size_t> prof;
   for (auto& name : spec.profile) {
     auto names = problem.parameter_names();
@@ -21,6 +19,10 @@ FitResult run_fit(const FitProblem& problem, const FitSpec& spec) {
     if (it == names.end()) throw Error("profile: '" + name + "' is not an estimated parameter of this fit");
     prof.push_back(static_cast<size_t>(it - names.begin()));
   }
+  check_optimizer(problem, spec.optimizer);
+  if (!prof.empty() && !problem.has_jacobian())
+    throw Error("profile: profile likelihoods re-optimise with Ceres, which needs Jacobians (" +
+                problem.no_jacobian_reason() + ")");
   FitResult res;
   res.multistart = multistart(problem, spec.optimizer, spec.multistart);
   const FitSummary& b = res.best();
@@ -41,7 +43,7 @@ FitResult run_fit(const FitProblem& problem, const FitSpec& spec) {
   return res;
 }
 
-std::string format_result(const FitProblem& problem, const FitResult& r) {
+std::string format_result(const ResidualProblem& problem, const FitResult& r) {
   std::ostringstream os;
   const FitSummary& b = r.best();
   if (r.multistart.runs.size() > 1) {
@@ -69,7 +71,7 @@ std::string format_result(const FitProblem& problem, const FitResult& r) {
   return os.str();
 }
 
-void write_fit_h5(io::H5Writer& out, const FitProblem& problem, const FitSpec& spec, const FitResult& r) {
+void write_fit_h5(io::H5Writer& out, const ResidualProblem& problem, const FitSpec& spec, const FitResult& r) {
   const FitSummary& b = r.best();
   const size_t n = problem.num_parameters();
   std::vector<std::string> names = problem.parameter_names(), units, scales;
@@ -194,32 +196,13 @@ void write_fit_h5(io::H5Writer& out, const FitProblem& problem, const FitSpec& s
     out.set_attribute(g, "threshold_95", 3.841458820694124);
   }
 
-  // Kinematic comparison, best-fit trajectory, parameters, features.
-  if (b.usable) {
-    try {
-      auto comps = problem.kinematic_comparison(b.x.data());
-      for (size_t i = 0; i < comps.size(); ++i) {
-        const std::string suffix = i == 0 ? "" : "_" + std::to_string(i);
-        out.write("/fit/data" + suffix + "/time", comps[i].time_ms, "ms");
-        out.write("/fit/model" + suffix + "/time", comps[i].time_ms, "ms");
-        for (size_t c = 0; c < comps[i].channels.size(); ++c) {
-          out.write("/fit/data" + suffix + "/" + comps[i].channels[c], comps[i].data_deg[c], "deg");
-          out.write("/fit/model" + suffix + "/" + comps[i].channels[c], comps[i].model_deg[c], "deg");
-        }
-      }
-      solver::SolveResult tr = problem.simulate(b.x.data(), spec.output_dt_ms);
-      io::write_trajectory(out, problem.model(), tr);
-      io::write_parameters(out, problem.model(), problem.model_parameters(b.x.data()));
-      features::FeatureOptions fo = spec.problem.feature_options;
-      fo.discard_ms = spec.problem.discard_ms;
-      features::write_features_h5(out, features::compute_features(problem.model(), tr, fo));
-    } catch (const Error& e) {
-      out.set_attribute("/fit", "trajectory_note", std::string("best-fit trajectory not written: ") + e.what());
-    }
-  } else {
-    // No usable optimum: record the parameter vector the fit started from.
-    io::write_parameters(out, problem.model(), problem.model_parameters(b.x_start.data()));
-    out.set_attribute("/fit", "trajectory_note", std::string("no usable optimum: no best-fit trajectory; /parameters holds the start"));
+  // The model at the optimum (or the start when there is none).
+  try {
+    problem.write_model_output(out, b.usable ? b.x.data() : b.x_start.data(), b.usable, spec.output_dt_ms);
+    if (!b.usable)
+      out.set_attribute("/fit", "trajectory_note", std::string("no usable optimum: no best-fit trajectory; /parameters holds the start"));
+  } catch (const Error& e) {
+    out.set_attribute("/fit", "trajectory_note", std::string("best-fit trajectory not written: ") + e.what());
   }
 }
 

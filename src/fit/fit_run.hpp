@@ -23,12 +23,12 @@ struct FitResult {
 
 // Never throws for a failing fit (the summaries say why); throws Error for bad input
 // (e.g. a profile of a parameter that is not estimated).
-FitResult run_fit(const FitProblem& problem, const FitSpec& spec);
+FitResult run_fit(const ResidualProblem& problem, const FitSpec& spec);
 
 // Human summary: the optimiser's lines, then one line per parameter (estimate +- SE).
-std::string format_result(const FitProblem& problem, const FitResult& result);
+std::string format_result(const ResidualProblem& problem, const FitResult& result);
 
 // /fit/... (docs/fit.md), /trajectory (best fit), /parameters, /features.
-void write_fit_h5(io::H5Writer& out, const FitProblem& problem, const FitSpec& spec, const FitResult& result);
+void write_fit_h5(io::H5Writer& out, const ResidualProblem& problem, const FitSpec& spec, const FitResult& result);
 
 }  // namespace phasmid::fit

@@ -11,7 +11,7 @@
 
 namespace phasmid::fit {
 
-MultistartResult multistart(const FitProblem& problem, const OptimizerOptions& options, const MultistartOptions& ms) {
+MultistartResult multistart(const ResidualProblem& problem, const OptimizerOptions& options, const MultistartOptions& ms) {
   MultistartResult out;
   const size_t n = std::max<size_t>(ms.starts, 1);
   std::vector<std::vector<double>> starts = {problem.start()};

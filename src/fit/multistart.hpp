@@ -22,6 +22,6 @@ struct MultistartResult {
   size_t best = 0;               // index of the lowest final cost among usable runs
 };
 
-MultistartResult multistart(const FitProblem& problem, const OptimizerOptions& options, const MultistartOptions& ms);
+MultistartResult multistart(const ResidualProblem& problem, const OptimizerOptions& options, const MultistartOptions& ms);
 
 }  // namespace phasmid::fit

@@ -36,7 +36,7 @@ AlgoInfo algorithm(const std::string& name) {
 }
 
 struct Data {
-  const FitProblem* problem;
+  const ResidualProblem* problem;
   const OptimizerOptions* options;
   bool gradient;
   std::vector<double> r, J;
@@ -119,7 +119,7 @@ struct OptHandle {
 };
 }  // namespace
 
-FitSummary optimize_nlopt(const FitProblem& problem, const std::vector<double>& x0, const OptimizerOptions& o) {
+FitSummary optimize_nlopt(const ResidualProblem& problem, const std::vector<double>& x0, const OptimizerOptions& o) {
   FitSummary out;
   if (!o.fixed.empty()) throw Error("internal: fixed parameters are supported by the Ceres back end only");
   const unsigned n = static_cast<unsigned>(problem.num_parameters());

@@ -46,7 +46,22 @@ std::string optimizer_name(const OptimizerOptions& o) {
   return o.backend == Backend::Ceres ? std::string("ceres") : "nlopt:" + o.nlopt_algorithm;
 }
 
-FitSummary optimize(const FitProblem& problem, const std::vector<double>& x0, const OptimizerOptions& o) {
+bool needs_jacobian(const OptimizerOptions& o) {
+  if (o.backend == Backend::Ceres) return true;
+  for (const char* g : {"LBFGS", "SLSQP", "MMA", "MLSL"})
+    if (o.nlopt_algorithm == g) return true;
+  return false;
+}
+
+void check_optimizer(const ResidualProblem& problem, const OptimizerOptions& o) {
+  if (problem.has_jacobian() || !needs_jacobian(o)) return;
+  throw Error("optimizer " + optimizer_name(o) + " needs Jacobians, which this model does not provide (" +
+              problem.no_jacobian_reason() + "); use a derivative-free or global NLopt method: nlopt:BOBYQA, " +
+              "nlopt:COBYLA, nlopt:NELDERMEAD, nlopt:SBPLX, nlopt:DIRECT_L, nlopt:CRS2_LM or nlopt:ISRES");
+}
+
+FitSummary optimize(const ResidualProblem& problem, const std::vector<double>& x0, const OptimizerOptions& o) {
+  check_optimizer(problem, o);
   if (x0.size() != problem.num_parameters()) throw Error("internal: start vector has the wrong size");
   auto t0 = std::chrono::steady_clock::now();
   FitSummary s = o.backend == Backend::Ceres ? optimize_ceres(problem, x0, o) : optimize_nlopt(problem, x0, o);
@@ -63,7 +78,7 @@ FitSummary optimize(const FitProblem& problem, const std::vector<double>& x0, co
   return s;
 }
 
-std::string describe(const FitProblem& problem, const FitSummary& s) {
+std::string describe(const ResidualProblem& problem, const FitSummary& s) {
   std::ostringstream os;
   os.precision(6);
   os << "fit [" << s.optimizer << "]: " << (s.converged ? "converged" : "NOT converged") << " (" << s.termination

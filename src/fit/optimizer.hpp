@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "fit/fit_problem.hpp"
+#include "fit/residual_problem.hpp"
 
 namespace phasmid::fit {
 
@@ -37,6 +37,10 @@ struct OptimizerOptions {
 void parse_optimizer(const std::string& spec, OptimizerOptions& options);
 std::string optimizer_name(const OptimizerOptions& options);
 std::vector<std::string> nlopt_algorithms();
+// True for the back ends that need the Jacobian: ceres and the gradient-based NLopt methods.
+bool needs_jacobian(const OptimizerOptions& options);
+// Throws Error (one line) if the optimiser needs a Jacobian the problem cannot provide.
+void check_optimizer(const ResidualProblem& problem, const OptimizerOptions& options);
 
 struct FitSummary {
   bool converged = false;      // the back end reports convergence (not: iteration limit or failure)
@@ -54,13 +58,13 @@ struct FitSummary {
   std::string report;          // Ceres FullReport / NLopt result text
 };
 
-FitSummary optimize(const FitProblem& problem, const std::vector<double>& x0, const OptimizerOptions& options);
+FitSummary optimize(const ResidualProblem& problem, const std::vector<double>& x0, const OptimizerOptions& options);
 
 // Back ends (used by optimize()).
-FitSummary optimize_ceres(const FitProblem& problem, const std::vector<double>& x0, const OptimizerOptions& options);
-FitSummary optimize_nlopt(const FitProblem& problem, const std::vector<double>& x0, const OptimizerOptions& options);
+FitSummary optimize_ceres(const ResidualProblem& problem, const std::vector<double>& x0, const OptimizerOptions& options);
+FitSummary optimize_nlopt(const ResidualProblem& problem, const std::vector<double>& x0, const OptimizerOptions& options);
 
 // One-paragraph human summary (several short lines).
-std::string describe(const FitProblem& problem, const FitSummary& s);
+std::string describe(const ResidualProblem& problem, const FitSummary& s);
 
 }  // namespace phasmid::fit

@@ -53,6 +53,20 @@ double dtheta_dx(Scale s, double x) {
   return 1.0;
 }
 
+namespace {
+bool glob_match(const char* pat, const char* s) {
+  if (*pat == '\0') return *s == '\0';
+  if (*pat == '*') return glob_match(pat + 1, s) || (*s && glob_match(pat, s + 1));
+  return *s && (*pat == '?' || *pat == *s) && glob_match(pat + 1, s + 1);
+}
+}  // namespace
+
+bool is_parameter_pattern(const std::string& id) { return id.find_first_of("*?") != std::string::npos; }
+
+bool parameter_id_matches(const std::string& id, const std::string& name) {
+  return is_parameter_pattern(id) ? glob_match(id.c_str(), name.c_str()) : id == name;
+}
+
 void validate(const FitParameter& p) {
   const std::string w = p.origin.empty() ? "" : p.origin + ": ";
   auto fail = [&](const std::string& m) { throw Error(w + "parameter '" + p.id + "': " + m); };

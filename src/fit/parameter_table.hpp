@@ -36,6 +36,12 @@ std::vector<FitParameter> parse_parameter_table(const std::string& text, const s
 // Writes the same format (used for the synthetic data set and for `--parameters` round trips).
 std::string format_parameter_table(const std::vector<FitParameter>& params);
 
+// A parameterId names one model parameter, or with wildcards several that are tied to one
+// fitted value: '*' matches any run of characters, '?' exactly one ("switch.S?.at_400ms"
+// ties switch.SL.at_400ms and switch.SR.at_400ms).
+bool is_parameter_pattern(const std::string& id);
+bool parameter_id_matches(const std::string& id, const std::string& name);
+
 // Checks one parameter for consistency (bounds ordered, nominal inside, log scales positive).
 void validate(const FitParameter& p);
 

@@ -11,7 +11,7 @@ const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 
-Uncertainty estimate_uncertainty(const FitProblem& problem, const std::vector<double>& x, bool absolute_sigma) {
+Uncertainty estimate_uncertainty(const ResidualProblem& problem, const std::vector<double>& x, bool absolute_sigma) {
   Uncertainty u;
   const size_t n = problem.num_parameters(), m = problem.num_residuals();
   u.standard_error_scaled = Eigen::VectorXd::Constant(n, kNaN);
@@ -20,6 +20,12 @@ Uncertainty estimate_uncertainty(const FitProblem& problem, const std::vector<do
   u.covariance_scaled = Eigen::MatrixXd::Constant(n, n, kNaN);
   std::vector<double> r(m), J(m * n);
   std::string err;
+  if (!problem.has_jacobian()) {
+    if (problem.evaluate(x.data(), r.data(), nullptr, &err)) u.residuals = Eigen::Map<Eigen::VectorXd>(r.data(), m);
+    u.sigma2 = kNaN;
+    u.message = "no standard errors: " + problem.no_jacobian_reason();
+    return u;
+  }
   if (!problem.evaluate(x.data(), r.data(), J.data(), &err)) {
     u.message = "no Jacobian at the optimum: " + err;
     return u;
@@ -70,7 +76,7 @@ Uncertainty estimate_uncertainty(const FitProblem& problem, const std::vector<do
   return u;
 }
 
-Profile profile_likelihood(const FitProblem& problem, const std::vector<double>& x_opt, double cost_opt, size_t j,
+Profile profile_likelihood(const ResidualProblem& problem, const std::vector<double>& x_opt, double cost_opt, size_t j,
                            double sigma2, const Eigen::VectorXd& se_scaled, size_t points, double span,
                            OptimizerOptions o) {
   Profile pr;

@@ -29,7 +29,7 @@ struct Uncertainty {
   int rank = 0;
 };
 
-Uncertainty estimate_uncertainty(const FitProblem& problem, const std::vector<double>& x, bool absolute_sigma);
+Uncertainty estimate_uncertainty(const ResidualProblem& problem, const std::vector<double>& x, bool absolute_sigma);
 
 struct Profile {
   std::string parameter;
@@ -41,7 +41,7 @@ struct Profile {
 
 // points: grid size (odd; includes the optimum); span: +- span standard errors of x (clipped
 // to the bounds; the whole range when the standard error is not finite).
-Profile profile_likelihood(const FitProblem& problem, const std::vector<double>& x_opt, double cost_opt, size_t j,
+Profile profile_likelihood(const ResidualProblem& problem, const std::vector<double>& x_opt, double cost_opt, size_t j,
                            double sigma2, const Eigen::VectorXd& se_scaled, size_t points, double span,
                            OptimizerOptions options);
 

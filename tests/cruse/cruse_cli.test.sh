@@ -22,6 +22,13 @@ printf 'model = "cruse1980"\n[cruse1980]\nT1 = 7\nT3 = 1\n' >bad.toml
 "$PHASMID" cruse bad.toml 2>err.txt && { echo "unknown key accepted"; fail=1; }
 grep -q "bad.toml:4: unknown key 'cruse1980.T3'" err.txt || { echo "bad message: $(cat err.txt)"; fail=1; }
 
+# phasmid fit on a cruse1980 config: Ceres needs Jacobians the oscillators do not have.
+"$PHASMID" fit fit_cruse1980_switch.toml --optimizer ceres -o f.h5 2>err.txt
+[ $? -eq 1 ] || { echo "ceres on cruse1980 should exit 1"; fail=1; }
+[ "$(wc -l <err.txt)" -eq 1 ] && grep -q "needs Jacobians" err.txt || { echo "bad message: $(cat err.txt)"; fail=1; }
+"$PHASMID" fit fit_cruse1980_switch.toml --target-set nope 2>err.txt && { echo "unknown target set accepted"; fail=1; }
+grep -q "no targets in set 'nope' (sets: closed_form_lag, default)" err.txt || { echo "bad message: $(cat err.txt)"; fail=1; }
+
 out=$("$PHASMID" simroach2 check-muscles) || { echo "check-muscles failed"; fail=1; }
 grep -q "51 of 60 muscles" <<<"$out" || { echo "check-muscles summary: $out"; fail=1; }
 

@@ -10,20 +10,6 @@
 
 using namespace phasmid::cruse;
 
-namespace {
-
-bool has_pair(const Features& f, const std::string& pair) {
-  return std::find(f.in_phase_pairs.begin(), f.in_phase_pairs.end(), pair) != f.in_phase_pairs.end();
-}
-
-Parameters at_period(Parameters p, double period_ms) {
-  p.set("retraction_rate", retraction_rate_for_period(p, period_ms));
-  p.set("duration_ms", 60 * period_ms);
-  return p;
-}
-
-}  // namespace
-
 // Sect. 3: "the model showed a stable pattern for each walking speed independent of the
 // particular starting position" with L1-R2 and L2-R3 protracting together (Sect. 2).
 class AllStartPositions : public ::testing::TestWithParam<std::tuple<double, Stepping>> {};
@@ -37,8 +23,8 @@ TEST_P(AllStartPositions, SettleIntoOnePatternWithL1R2AndL2R3InPhase) {
     p.set("start_position", start);
     const Features f = measure(simulate(p), p);
     ASSERT_TRUE(f.locked) << "start position " << start;
-    EXPECT_TRUE(has_pair(f, "L1-R2")) << "start position " << start;
-    EXPECT_TRUE(has_pair(f, "L2-R3")) << "start position " << start;
+    EXPECT_TRUE(in_phase(f, "L1-R2")) << "start position " << start;
+    EXPECT_TRUE(in_phase(f, "L2-R3")) << "start position " << start;
     if (start == 1) first = f;
     else EXPECT_TRUE(same_pattern(first, f, 20.0)) << "start position " << start;
   }
@@ -88,7 +74,7 @@ TEST_P(GaitI, LagGrowsWithPeriodWithSlopeOneFromAllStartPositions) {
       p.set("start_position", start);
       const Features f = measure(simulate(p), p);
       ASSERT_TRUE(f.locked) << period << " ms, start " << start;
-      EXPECT_TRUE(has_pair(f, "L1-L3") && has_pair(f, "L1-R2") && has_pair(f, "L2-R3")) << period;
+      EXPECT_TRUE(in_phase(f, "L1-L3") && in_phase(f, "L1-R2") && in_phase(f, "L2-R3")) << period;
       EXPECT_LE(std::abs(f.lag_L3_L1_ms - period), allowed) << period << " ms, start " << start;
       if (start == 1) lags.push_back(f.lag_L3_L1_ms);
     }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "config/config.hpp"
+#include "fit/fit_problem.hpp"
 #include "fit/kinematic_data.hpp"
 #include "fit/parameter_table.hpp"
 
