@@ -44,6 +44,24 @@ std::set<std::string> known_features(const model::OdeModel& m) {
   return f;
 }
 
+// Per-leg features of the walking models (features::compute_features): values only, no
+// gradients, so usable with derivative-free optimisers only.
+std::set<std::string> value_only_features(const model::OdeModel& m) {
+  std::set<std::string> f;
+  std::vector<std::string> legs;
+  for (auto& a : m.angles())
+    if (a.joint == "ctr" && m.parameters().contains(a.leg + ".coupling.beta_thr_pr")) legs.push_back(a.leg);
+  for (auto& l : legs) {
+    for (const char* s : {"step_period_ms", "stance_ms", "swing_ms", "duty_factor", "thc.stance_change_deg",
+                          "fti.stance_change_deg", "protraction_in_stance_fraction", "stance_retraction_fraction"})
+      f.insert(l + "." + s);
+    for (auto& o : legs)
+      if (o != l) f.insert("phase_lag." + l + "_to_" + o);
+  }
+  if (legs.size() >= 3) f.insert("gait_class");
+  return f;
+}
+
 std::vector<size_t> match_parameters(const model::ParameterSet& ps, const std::string& id, const std::string& w) {
   if (!is_parameter_pattern(id)) {
     try {
@@ -135,13 +153,16 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
   // applies the jump conditions and s(0) = dy0/dp (docs/sensitivity.md).
 
   // Targets: validate and label residuals.
-  std::set<std::string> feats = known_features(model_);
+  std::set<std::string> feats = known_features(model_), values_only = value_only_features(model_);
   for (auto& f : targets_.features) {
-    if (!feats.count(f.feature)) {
-      std::string list;
+    if (values_only.count(f.feature)) {
+      if (value_only_feature_.empty()) value_only_feature_ = f.feature;
+    } else if (!feats.count(f.feature)) {
+      std::string list, list2;
       for (auto& n : feats) list += (list.empty() ? "" : ", ") + n;
+      for (auto& n : values_only) list2 += (list2.empty() ? "" : ", ") + n;
       throw Error(f.origin + ": unknown feature '" + f.feature + "' (features with exact gradients of this model: " + list +
-                  "; leg features such as step_period_ms have no gradients yet)");
+                  (list2.empty() ? std::string(")") : "; values only, for derivative-free optimisers: " + list2 + ")"));
     }
     if (!(f.tolerance > 0)) throw Error(f.origin + ": tolerance must be > 0");
     if (!(settings_.t_end_ms > 0)) throw Error(f.origin + ": feature targets need t_end_ms in [fit] or [simulation]");
@@ -190,6 +211,10 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
         }
     if (used == 0) throw Error(k.origin + ": no usable samples (all missing or before t_min_ms)");
   }
+}
+
+std::string FitProblem::no_jacobian_reason() const {
+  return "the target feature '" + value_only_feature_ + "' is a per-leg walking feature without gradients";
 }
 
 std::string FitProblem::parameter_unit(size_t j) const {

@@ -59,6 +59,11 @@ class FitProblem : public ResidualProblem {
   };
   std::vector<KinematicComparison> kinematic_comparison(const double* x) const;
 
+  // False when a target is a value-only feature (the walking models' per-leg features, e.g.
+  // `middle.step_period_ms`): then only derivative-free optimisers apply.
+  bool has_jacobian() const override { return value_only_feature_.empty(); }
+  std::string no_jacobian_reason() const override;
+
   long evaluations() const { return evaluations_; }
   long jacobian_evaluations() const { return jacobian_evaluations_; }
   double horizon_ms(const double* x) const;
@@ -82,6 +87,7 @@ class FitProblem : public ResidualProblem {
   std::vector<double> offset_fixed_;
   std::vector<size_t> switch_channel_, kin_channel_base_;
   std::vector<std::vector<size_t>> kin_channels_;  // per kinematic target: model angle channel per data channel
+  std::string value_only_feature_;                 // first target without gradients (empty: none)
   mutable std::atomic<long> evaluations_{0}, jacobian_evaluations_{0};
 };
 

@@ -55,7 +55,7 @@ bool needs_jacobian(const OptimizerOptions& o) {
 
 void check_optimizer(const ResidualProblem& problem, const OptimizerOptions& o) {
   if (problem.has_jacobian() || !needs_jacobian(o)) return;
-  throw Error("optimizer " + optimizer_name(o) + " needs Jacobians, which this model does not provide (" +
+  throw Error("optimizer " + optimizer_name(o) + " needs Jacobians, which this fit problem does not provide (" +
               problem.no_jacobian_reason() + "); use a derivative-free or global NLopt method: nlopt:BOBYQA, " +
               "nlopt:COBYLA, nlopt:NELDERMEAD, nlopt:SBPLX, nlopt:DIRECT_L, nlopt:CRS2_LM or nlopt:ISRES");
 }
