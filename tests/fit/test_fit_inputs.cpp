@@ -6,6 +6,7 @@
 #include "common/error.hpp"
 #include "fit/fit_config.hpp"
 #include "fit/kinematic_data.hpp"
+#include "fit/optimizer.hpp"
 #include "fit/parameter_table.hpp"
 #include "fit/start_points.hpp"
 #include "fit_test_util.hpp"
@@ -191,4 +192,16 @@ TEST(FitConfig, EveryExampleFitConfigBuildsItsProblem) {
   auto spec = fit::load_fit_spec(cfg, *m);
   fit::FitProblem p(*m, spec.parameters, spec.targets, spec.problem);
   EXPECT_EQ(p.tied_parameters(0).size(), 3u);
+  // Its step-period target is a value-only walking feature: derivative-free optimisers only.
+  EXPECT_FALSE(p.has_jacobian());
+  EXPECT_NE(p.no_jacobian_reason().find("middle.step_period_ms"), std::string::npos);
+  fit::OptimizerOptions ceres, bobyqa;
+  fit::parse_optimizer("ceres", ceres);
+  fit::parse_optimizer("nlopt:BOBYQA", bobyqa);
+  EXPECT_THROW(fit::check_optimizer(p, ceres), Error);
+  EXPECT_NO_THROW(fit::check_optimizer(p, bobyqa));
+  // Without value-only targets the same model keeps its exact Jacobian.
+  spec.targets.features.erase(spec.targets.features.begin());  // drop middle.step_period_ms
+  fit::FitProblem q(*m, spec.parameters, spec.targets, spec.problem);
+  EXPECT_TRUE(q.has_jacobian());
 }
