@@ -480,8 +480,16 @@
   }
   function sweep(s) {
     var names = s.parameter_names || [], units = s.parameter_units || [], pts = s.points || [];
+    var opts = (s.options || []).filter(function (o) { return (o.values || []).length === pts.length; });
+    // Parameters beyond the first two get panels unless they are functions of the first two (rows
+    // of linked values, e.g. three coupling strengths set together).
+    var distinct = function (f) { var u = {}; pts.forEach(function (p) { u[f(p)] = 1; }); return Object.keys(u).length; };
+    var extraFree = names.length > 2 && distinct(function (p) { return p.slice(0, 2).join('|'); }) < distinct(function (p) { return p.join('|'); });
+    var panelBy = opts.map(function (o) { return o.name; }).concat(extraFree ? names.slice(2) : []);
+    var notes = (names.length > 2 && !extraFree ? [names.slice(2).join(', ') + ' set together with them'] : [])
+      .concat(panelBy.length ? ['one panel per value of ' + panelBy.join(' and ')] : []);
     var sec = section('sweep', 'Sweep', pts.length && names.length ? 'Features and gait class at each of the ' + pts.length + ' sweep points, over the first two swept parameters' +
-      (names.length > 2 ? ' (one panel per combination of the others)' : '') + '.' : 'Results over the swept parameter values.');
+      (notes.length ? ' (' + notes.join('; ') + ')' : '') + '.' : 'Results over the swept parameter values.');
     sweepAxes(sec, s);
     if (!pts.length || !names.length) {
       if (!(s.axes || []).length && !(s.extra || []).length) sec.appendChild(el('p', { cls: 'empty', text: 'No sweep points in this file.' }));
@@ -490,14 +498,22 @@
     var pname = function (j) { return withUnits(names[j], units[j]); };
     var status = s.status || pts.map(function () { return 'ok'; });
     var gait = s.gait_class ? s.gait_class.slice() : null;
-    // Panels: one per combination of parameters beyond the first two.
-    var panels = {}, porder = [];
-    pts.forEach(function (p, i) {
-      var key = p.slice(2).map(function (v, j) { return names[j + 2] + ' = ' + fmt(v); }).join(', ');
-      if (!panels[key]) { panels[key] = []; porder.push(key); }
-      panels[key].push(i);
-    });
-    if (porder.length > 6) { panels = { '': pts.map(function (p, i) { return i; }) }; porder = ['']; }
+    // Panels: one per combination of swept options and free parameters beyond the first two;
+    // with too many, options only; with still too many, one panel.
+    var panels, porder;
+    function makePanels(withParams) {
+      panels = {}; porder = [];
+      pts.forEach(function (p, i) {
+        var parts = opts.map(function (o) { return o.name + ' = ' + o.values[i]; });
+        if (withParams) parts = parts.concat(p.slice(2).map(function (v, j) { return names[j + 2] + ' = ' + fmt(v); }));
+        var key = parts.join(', ');
+        if (!panels[key]) { panels[key] = []; porder.push(key); }
+        panels[key].push(i);
+      });
+    }
+    makePanels(extraFree);
+    if (porder.length > 8 && extraFree) makePanels(false);
+    if (porder.length > 8) { panels = { '': pts.map(function (p, i) { return i; }) }; porder = ['']; }
     var xName = pname(0), yName = names.length > 1 ? pname(1) : '';
     function drawPanels(baseId, what, valueOf, colorOf, valueLabel, after, numeric) {
       // Panels of one quantity side by side, on one colour scale.

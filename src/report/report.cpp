@@ -444,6 +444,13 @@ void extract_sweep(const H5Reader& r, json& out) {
     s["status"] = status;
   else if (r.exists("/sweep/status"))
     note_ignored(out, "/sweep/status (not one per point)");
+  // Swept [model] options (strings per point): the report draws one panel per combination.
+  s["options"] = json::array();
+  for (const auto& name : strings_or_empty(r, "/sweep/option_names")) {
+    auto v = strings_or_empty(r, "/sweep/options/" + name);
+    if (v.size() == n_points) s["options"].push_back({{"name", name}, {"values", v}});
+    else note_ignored(out, "/sweep/options/" + name + " (not one per point)");
+  }
   // Other layouts: a group with a `values` dataset is a 1-D axis (e.g. the Cruse-model stability
   // sweep: /sweep/<parameter>/{values, stable, stable_min, ...}); its same-length datasets are
   // drawn against it, its scalars tabulated. Other numeric vectors are tabulated.
@@ -451,7 +458,7 @@ void extract_sweep(const H5Reader& r, json& out) {
   s["extra"] = json::array();
   for (const auto& c : r.children("/sweep")) {
     static const std::set<std::string> known = {"parameter_names", "parameter_units", "points", "features",
-                                                "gait_class", "status"};
+                                                "gait_class", "status", "option_names", "options"};
     if (known.count(c)) continue;
     const std::string g = "/sweep/" + c;
     if (r.is_group(g) && is_numeric_dataset(r, g + "/values")) {

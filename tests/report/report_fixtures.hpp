@@ -201,6 +201,7 @@ enum class SweepShape {
   Grid,          // 4 x 4 grid over coupling strength and sign, for two start conditions (two panels)
   Scattered,     // 15 scattered (Latin-hypercube-like) points over strength and sign
   OneParameter,  // 8 strengths only
+  LinkedRowsWithOptions,  // 4 rows of three coupling strengths set together x 2 gaits x 2 gates
 };
 
 // Sweep results with one failed point (index 5).
@@ -208,9 +209,11 @@ inline void write_sweep_fixture(const std::string& path, SweepShape shape = Swee
   const bool grid = shape == SweepShape::Grid;
   io::H5Writer w(path);
   w.write_run_info(fixture_info("sweep"));
+  const bool linked = shape == SweepShape::LinkedRowsWithOptions;
   std::vector<std::string> names = {"coupling.strength"};
   if (shape != SweepShape::OneParameter) names.push_back("coupling.sign");
-  if (grid) names.push_back("start.tripod");
+  if (grid || linked) names.push_back(grid ? "start.tripod" : "coupling.third");
+  std::vector<std::string> opt_gait, opt_gate;
   w.write("/sweep/parameter_names", names);
   w.write("/sweep/parameter_units", std::vector<std::string>(names.size(), "1"));
   std::vector<double> pts;
@@ -220,7 +223,7 @@ inline void write_sweep_fixture(const std::string& path, SweepShape shape = Swee
   auto add = [&](double s, double g, double start) {
     pts.push_back(s);
     if (shape != SweepShape::OneParameter) pts.push_back(g);
-    if (grid) pts.push_back(start);
+    if (grid || linked) pts.push_back(start);
     bool failed = k == 5;
     status.push_back(failed ? "CVODE: too much work at t = 312 ms" : "ok");
     period.push_back(failed ? std::nan("") : 900 + 300 * s - 50 * g + 20 * start);
@@ -232,6 +235,14 @@ inline void write_sweep_fixture(const std::string& path, SweepShape shape = Swee
     for (double start : {0.0, 1.0})
       for (double g : {-1.0, -0.5, 0.5, 1.0})
         for (double s : {0.1, 0.3, 0.6, 1.0}) add(s, g, start);
+  } else if (linked) {
+    for (const char* gait_opt : {"tetrapod", "tripod"})
+      for (const char* gate : {"target_swing", "source_contact"})
+        for (double s : {-0.6, -1.5, 0.6, 1.5}) {
+          opt_gait.push_back(gait_opt);
+          opt_gate.push_back(gate);
+          add(std::fabs(s), s > 0 ? 1.0 : -1.0, s);  // the third column is a function of the first two
+        }
   } else if (shape == SweepShape::OneParameter) {
     for (int i = 0; i < 8; ++i) add(0.05 + 0.125 * i, -1.0, 0);
   } else {
@@ -243,6 +254,11 @@ inline void write_sweep_fixture(const std::string& path, SweepShape shape = Swee
   w.write("/sweep/features/stance_swing_ratio", ratio, "1");
   w.write("/sweep/gait_class", gait);
   w.write("/sweep/status", status);
+  if (linked) {
+    w.write("/sweep/option_names", std::vector<std::string>{"gait", "coupling_gate"});
+    w.write("/sweep/options/gait", opt_gait);
+    w.write("/sweep/options/coupling_gate", opt_gate);
+  }
   w.commit();
 }
 

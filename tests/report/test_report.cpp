@@ -136,7 +136,7 @@ void maybe_screenshot(const fs::path& html, const std::string& kind) {
 }
 
 void expect_renders(const std::string& kind, const fs::path& h5, const std::vector<std::string>& expected,
-                    bool screenshot = true) {
+                    const std::vector<std::string>& absent = {}, bool screenshot = true) {
   ASSERT_FALSE(chromium().empty()) << "chromium is required for the report rendering tests "
                                       "(apt-get install -y chromium; see scripts/setup.sh)";
   fs::path html = make_report(h5);
@@ -152,6 +152,7 @@ void expect_renders(const std::string& kind, const fs::path& h5, const std::vect
     // A rendered figure is a real element with a drawn canvas (or a table) in the DOM.
     EXPECT_NE(page.dom.find("id=\"" + id + "\""), std::string::npos) << id;
   }
+  for (const auto& id : absent) EXPECT_FALSE(figs.count(id)) << kind << ": unexpected figure " << id;
   if (screenshot) maybe_screenshot(html, kind);
 }
 
@@ -346,6 +347,28 @@ TEST(ReportRender, Sweep) {
                   "fig-sweep-gait", "fig-sweep-gait--1", "table-sweep-gaits", "table-sweep-failures"});
 }
 
+TEST(ReportUnits, ExtractSweepOptions) {
+  fs::path h5 = work_dir() / "unit_sweep_options.h5";
+  phasmid::testing::write_sweep_fixture(h5.string(), phasmid::testing::SweepShape::LinkedRowsWithOptions);
+  auto j = extract(h5.string());
+  const auto& o = j["sweep"]["options"];
+  ASSERT_EQ(o.size(), 2u);
+  EXPECT_EQ(o[0]["name"], "gait");
+  EXPECT_EQ(o[1]["values"][4], "source_contact");
+  EXPECT_EQ(o[1]["values"].size(), 16u);
+  for (auto& p : j["ignored"]) EXPECT_EQ(p.get<std::string>().find("/sweep/option"), std::string::npos) << p;
+}
+
+TEST(ReportRender, SweepOptionsArePanelsNotOverlays) {
+  fs::path h5 = work_dir() / "sweep_options.h5";
+  phasmid::testing::write_sweep_fixture(h5.string(), phasmid::testing::SweepShape::LinkedRowsWithOptions);
+  // One panel per (gait, coupling_gate): 4; the linked third parameter adds none.
+  expect_renders("sweep_options", h5,
+                 {"fig-sweep-period_ms", "fig-sweep-period_ms--1", "fig-sweep-period_ms--2", "fig-sweep-period_ms--3",
+                  "fig-sweep-gait--3", "table-sweep-gaits", "table-sweep-failures"},
+                 {"fig-sweep-period_ms--4"});
+}
+
 TEST(ReportRender, SweepScatteredPoints) {
   fs::path h5 = work_dir() / "sweep_scatter.h5";
   phasmid::testing::write_sweep_fixture(h5.string(), phasmid::testing::SweepShape::Scattered);
@@ -373,7 +396,7 @@ TEST(ReportRender, MalformedGroupsAreListedNotFatal) {
   expect_renders("malformed", h5,
                  {"fig-angles-middle", "fig-voltage-x", "fig-sens-period_ms", "fig-sens-heatmap", "fig-fit-cost",
                   "table-fit-estimates", "list-ignored"},
-                 /*screenshot=*/false);
+                 {}, /*screenshot=*/false);
 }
 
 TEST(ReportRender, FileWithNothingToDraw) {
