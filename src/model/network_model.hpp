@@ -11,6 +11,8 @@
 //  - sensory thresholds (beta < beta_thr, gamma > gamma_thr): sigmoids of width `*.width_deg`.
 // Both converge to the switched model as the widths go to zero; they keep the right-hand
 // side differentiable so that CVODES sensitivities need no jump conditions.
+// Optionally (MotoneuronModel::Rate) the motoneurons are non-spiking rate cells and the muscle
+// activation follows their firing rate (docs/model.md, "Rate motoneurons").
 #include <string>
 #include <vector>
 
