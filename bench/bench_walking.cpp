@@ -7,7 +7,8 @@
 // "rate" formulation, docs/model.md): states, simulated ms, wall s, steps, RHS and Jacobian
 // evaluations, the ratio to the 2013 time scaled to the simulated duration, and gait features
 // to compare formulations and tolerances (after T_END/2, at most 2500 ms, is discarded): the
-// gait period, for the three legs the lags hind->middle and middle->front (in periods).
+// period (the FTi joint's; the middle leg's step period for leg and three legs), for the
+// three legs the lags hind->middle and middle->front (in periods).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -77,7 +78,7 @@ int main(int argc, char** argv) {
       const std::string label = std::string(c.label) + " " + form;
       std::printf("%-32s %7zu %8.0f %8.2f %8.2f %8ld %9ld %7ld %14.1f %8.3f %8.1f %7.3f %7.3f\n", label.c_str(),
                   m->num_states(), t_end, wall, cpu, r.stats.steps, r.stats.rhs_evals, r.stats.jac_evals, ref, wall / ref,
-                  get("period_ms"), get("phase_lag.hind_to_middle"), get("phase_lag.middle_to_front"));
+                  f.count("middle.step_period_ms") ? f["middle.step_period_ms"] : get("period_ms"), get("phase_lag.hind_to_middle"), get("phase_lag.middle_to_front"));
     }
   }
   return 0;
