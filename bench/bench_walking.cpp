@@ -1,12 +1,21 @@
 // Wall time of walking simulations next to the dissertation's compute times (Knops 2013,
 // Section 2.6: 2 s for one joint, 15 s for one leg, 180 s for three legs, each for 9 s of
-// walking). Usage: bench_walking [T_END_MS=9000] [models=joint,leg,three] [dense|band|klu|auto]
-// Prints one line per model: states, simulated ms, wall s, steps, RHS and Jacobian
-// evaluations, and the ratio to the 2013 time scaled to the simulated duration.
+// walking). Usage:
+//   bench_walking [T_END_MS=9000] [models=joint,leg,three] [dense|band|klu|auto]
+//                 [motoneurons=spiking,rate] [RTOL=1e-6]
+// Prints one line per model and motoneuron formulation (Hodgkin-Huxley "spiking" MNs or the
+// "rate" formulation, docs/model.md): states, simulated ms, wall s, steps, RHS and Jacobian
+// evaluations, the ratio to the 2013 time scaled to the simulated duration, and gait features
+// to compare formulations and tolerances (after T_END/2, at most 2500 ms, is discarded): the
+// period (the FTi joint's; the middle leg's step period for leg and three legs), for the
+// three legs the lags hind->middle and middle->front (in periods).
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <string>
 
 #include "features/features.hpp"
@@ -20,8 +29,9 @@ int main(int argc, char** argv) {
   const double t_end = argc > 1 ? std::atof(argv[1]) : 9000.0;
   const std::string which = argc > 2 ? argv[2] : "joint,leg,three";
   const std::string ls = argc > 3 ? argv[3] : "auto";
+  const std::string formulations = argc > 4 ? argv[4] : "spiking,rate";
   solver::SolverOptions so;
-  so.rtol = so.atol = 1e-6;  // the three-leg configs' tolerance
+  so.rtol = so.atol = argc > 5 ? std::atof(argv[5]) : 1e-6;  // default: the three-leg configs' tolerance
   if (ls == "dense") so.linear_solver = solver::LinearSolverKind::Dense;
   if (ls == "band") so.linear_solver = solver::LinearSolverKind::Band;
   if (ls == "klu") so.linear_solver = solver::LinearSolverKind::Klu;
@@ -32,27 +42,44 @@ int main(int argc, char** argv) {
   };
   const Case cases[] = {{"joint", "single joint (FTi)", 2.0}, {"leg", "middle leg", 15.0}, {"three", "three legs (tetrapod)", 180.0}};
   std::printf("# bench_walking: %.0f ms simulated, rtol = atol = %g, %s linear solver\n", t_end, so.rtol, ls.c_str());
-  std::printf("%-24s %7s %8s %8s %8s %8s %9s %7s %14s %8s\n", "model", "states", "sim_ms", "wall_s", "cpu_s", "steps",
-              "rhs", "jac", "2013_s(scaled)", "ratio");
+  std::printf("%-32s %7s %8s %8s %8s %8s %9s %7s %14s %8s %8s %7s %7s\n", "model", "states", "sim_ms", "wall_s", "cpu_s", "steps",
+              "rhs", "jac", "2013_s(scaled)", "ratio",
+              "period", "lag_hm", "lag_mf");
   for (const Case& c : cases) {
     if (which.find(c.key) == std::string::npos) continue;
-    std::unique_ptr<model::NetworkModel> m;
-    if (std::string(c.key) == "joint") m = model::build_single_joint_model("middle", model::JointType::Fti);
-    else if (std::string(c.key) == "leg") {
-      model::LegOptions o;
-      o.thc_set = "A.17";
-      m = model::build_leg_model("middle", o);
-    } else
-      m = model::build_three_leg_model({});
-    solver::Simulator sim(*m, so);
-    auto t0 = std::chrono::steady_clock::now();
-    std::clock_t c0 = std::clock();
-    auto r = sim.run(m->parameters().values(), solver::output_grid(t_end, 5.0), features::feature_roots(*m));
-    double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
-    double ref = c.t2013_s * t_end / 9000.0;
-    std::printf("%-24s %7zu %8.0f %8.2f %8.2f %8ld %9ld %7ld %14.1f %8.3f\n", c.label, m->num_states(), t_end, wall, cpu,
-                r.stats.steps, r.stats.rhs_evals, r.stats.jac_evals, ref, wall / ref);
+    for (const char* form : {"spiking", "rate"}) {
+      if (formulations.find(form) == std::string::npos) continue;
+      const model::MotoneuronModel mn = model::parse_motoneuron_model(form);
+      std::unique_ptr<model::NetworkModel> m;
+      if (std::string(c.key) == "joint") {
+        m = model::build_single_joint_model("middle", model::JointType::Fti, "", mn);
+      } else if (std::string(c.key) == "leg") {
+        model::LegOptions o;
+        o.thc_set = "A.17";
+        o.motoneuron = mn;
+        m = model::build_leg_model("middle", o);
+      } else {
+        model::ThreeLegOptions o;
+        o.motoneuron = mn;
+        m = model::build_three_leg_model(o);
+      }
+      solver::Simulator sim(*m, so);
+      auto t0 = std::chrono::steady_clock::now();
+      std::clock_t c0 = std::clock();
+      auto r = sim.run(m->parameters().values(), solver::output_grid(t_end, 5.0), features::feature_roots(*m));
+      double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
+      double ref = c.t2013_s * t_end / 9000.0;
+      features::FeatureOptions fo;
+      fo.discard_ms = std::min(2500.0, t_end / 2);
+      std::map<std::string, double> f;
+      for (auto& x : features::compute_features(*m, r, fo)) f[x.name] = x.value;
+      auto get = [&](const char* k) { return f.count(k) ? f[k] : NAN; };
+      const std::string label = std::string(c.label) + " " + form;
+      std::printf("%-32s %7zu %8.0f %8.2f %8.2f %8ld %9ld %7ld %14.1f %8.3f %8.1f %7.3f %7.3f\n", label.c_str(),
+                  m->num_states(), t_end, wall, cpu, r.stats.steps, r.stats.rhs_evals, r.stats.jac_evals, ref, wall / ref,
+                  f.count("middle.step_period_ms") ? f["middle.step_period_ms"] : get("period_ms"), get("phase_lag.hind_to_middle"), get("phase_lag.middle_to_front"));
+    }
   }
   return 0;
 }

@@ -96,7 +96,8 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
   const toml::table* mt = cfg.table["model"].as_table();
   if (!mt) throw Error(cfg.path + ": missing [model] section");
   check_keys(cfg, *mt, "model", {"type", "leg", "joint", "start_phase", "thc_table", "description",
-                                  "direction_switch", "gait", "coupling", "coupling_strength", "coupling_gate"});
+                                  "direction_switch", "gait", "coupling", "coupling_strength", "coupling_gate",
+                                  "motoneuron"});
   std::string type = text_of(cfg, *mt, "type", "");
   std::string leg = text_of(cfg, *mt, "leg", "middle");
   std::string thc_table = text_of(cfg, *mt, "thc_table", "");
@@ -108,6 +109,18 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
     (void)model::joint_table(leg, joint, thc_table);  // validates the leg
   } catch (const Error& e) {
     throw Error(where(cfg, *mt) + ": " + e.what());
+  }
+
+  // Motoneuron formulation of the network models (docs/config.md): "spiking" (default) or "rate".
+  model::MotoneuronModel mn = model::MotoneuronModel::Spiking;
+  if (const toml::node* n = mt->get("motoneuron")) {
+    bool network = type == "single_joint" || type == "leg" || type == "three_legs" || type == "curve_walking";
+    if (!network) throw Error(where(cfg, *n) + ": 'motoneuron' applies to network models only (single_joint, leg, three_legs, curve_walking)");
+    try {
+      mn = model::parse_motoneuron_model(text_of(cfg, *mt, "motoneuron", "spiking"));
+    } catch (const Error& e) {
+      throw Error(where(cfg, *n) + ": " + e.what());
+    }
   }
 
   std::unique_ptr<model::OdeModel> m;
@@ -128,9 +141,9 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
   } else if (type == "coupled_ctr_fti") {
     m = std::make_unique<model::CoupledCtrFtiModel>(leg);
   } else if (type == "single_joint") {
-    m = model::build_single_joint_model(leg, joint, thc_table);
+    m = model::build_single_joint_model(leg, joint, thc_table, mn);
   } else if (type == "curve_walking") {
-    m = model::build_curve_walking_model();
+    m = model::build_curve_walking_model(mn);
   } else if (type == "leg" || type == "three_legs") {
     bool sw = false;
     if (const toml::node* n = mt->get("direction_switch")) {
@@ -141,10 +154,12 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
       model::LegOptions o;
       o.thc_set = thc_table;
       o.direction_switch = sw;
+      o.motoneuron = mn;
       m = model::build_leg_model(leg, o);
     } else {
       model::ThreeLegOptions o;
       o.direction_switch = sw;
+      o.motoneuron = mn;
       o.gait = text_of(cfg, *mt, "gait", "tetrapod");
       std::string strength = text_of(cfg, *mt, "coupling_strength", "weak");
       if (strength != "weak" && strength != "strong")

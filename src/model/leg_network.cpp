@@ -179,7 +179,7 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
 
 std::unique_ptr<NetworkModel> build_leg_model(const std::string& leg, LegOptions o) {
   auto m = std::make_unique<NetworkModel>("leg");
-  NeuronClasses c = define_neuron_classes(*m);
+  NeuronClasses c = define_neuron_classes(*m, o.motoneuron);
   if (leg == "hind") o.crossed_fe = true;
   add_leg_network(*m, c, leg, o);
   return m;
@@ -205,7 +205,7 @@ void set_coupling_variant(ThreeLegOptions& o, const std::string& v) {
 
 std::unique_ptr<NetworkModel> build_three_leg_model(const ThreeLegOptions& o) {
   auto m = std::make_unique<NetworkModel>("three_legs");
-  NeuronClasses c = define_neuron_classes(*m);
+  NeuronClasses c = define_neuron_classes(*m, o.motoneuron);
   Def def{*m};
   const char* k33 = "Knops 2013, Section 3.3";
   const bool tripod = o.gait == "tripod";
@@ -289,11 +289,11 @@ std::unique_ptr<NetworkModel> build_three_leg_model(const ThreeLegOptions& o) {
   return m;
 }
 
-std::unique_ptr<NetworkModel> build_curve_walking_model() {
+std::unique_ptr<NetworkModel> build_curve_walking_model(MotoneuronModel mn) {
   // Section 3.2.3: two middle legs (L2, R2; Table A.17 ThC as in Knops et al. 2012) with the
   // direction switch, alternating with half a period; the other legs are passive supports.
   auto m = std::make_unique<NetworkModel>("curve_walking");
-  NeuronClasses c = define_neuron_classes(*m);
+  NeuronClasses c = define_neuron_classes(*m, mn);
   Def def{*m};
   for (const char* leg : {"L2", "R2"}) {
     LegOptions o;

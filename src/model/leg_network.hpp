@@ -28,6 +28,7 @@ struct LegOptions {
   // ld_release2_ms (gait transitions). Negative ld_release_ms: no hold network.
   double ld_release_ms = -1.0;
   std::string ld_release_source;
+  MotoneuronModel motoneuron = MotoneuronModel::Spiking;  // used by build_leg_model
 };
 
 struct LegNetwork {
@@ -57,12 +58,13 @@ struct ThreeLegOptions {
   //   target lifted); SourceContact - whenever the source leg has ground contact, as a synapse
   //   from the source's beta pathway would ("dampens the excitatory intrasegmental input").
   enum class CouplingGate { TargetSwing, SourceContact } gate = CouplingGate::TargetSwing;
+  MotoneuronModel motoneuron = MotoneuronModel::Spiking;
 };
 std::unique_ptr<NetworkModel> build_three_leg_model(const ThreeLegOptions& o);
 
 // type "curve_walking" (Section 3.2.3): left and right middle legs L2, R2 with direction
 // switches, half a period apart, plus the body parameters of body_kinematics.hpp.
-std::unique_ptr<NetworkModel> build_curve_walking_model();
+std::unique_ptr<NetworkModel> build_curve_walking_model(MotoneuronModel mn = MotoneuronModel::Spiking);
 // "inhibitory" | "excitatory" | "mixed" (Fig. 3.19 C: hind -> front excitatory, others inhibitory)
 void set_coupling_variant(ThreeLegOptions& o, const std::string& variant);
 // "target_swing" | "source_contact" (ThreeLegOptions::gate)

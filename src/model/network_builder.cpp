@@ -36,7 +36,7 @@ CpgJointValues cpg_values(JointType t) {
 }
 }  // namespace
 
-NeuronClasses define_neuron_classes(NetworkModel& m) {
+NeuronClasses define_neuron_classes(NetworkModel& m, MotoneuronModel mn_model) {
   Defs def{m};
   NeuronClasses c{};
   // NaP kinetics shared by CPG neurons (Table A.2) and interneurons (Table A.3).
@@ -119,6 +119,20 @@ NeuronClasses define_neuron_classes(NetworkModel& m) {
   size_t Vs = def("muscle.V_spike", -20, "mV", kChoice, "MN voltage above which an action potential is counted");
   size_t w = def("muscle.spike_width", 2.0, "mV", kChoice, "width of the smooth spike criterion", 1e-6);
   m.set_muscle_activation_params(a0, b, Vs, w);
+  if (mn_model == MotoneuronModel::Rate) {
+    // Rate formulation (docs/model.md, "Rate motoneurons"): `phasmid fit` of the middle leg's
+    // rate model to the spiking model's gait features (configs/fit_rate_motoneuron_leg.toml,
+    // started from the single-joint calibration configs/fit_rate_motoneuron.toml).
+    const char* kRate = "phasmid fit to the spiking model, configs/fit_rate_motoneuron_leg.toml (docs/model.md)";
+    RateMotoneuronIdx r;
+    r.V_half = def("mn.rate.V_half", -57.4317, "mV", kRate, "midpoint of the normalised firing rate R(V) of a rate MN", -70, -30);
+    r.width = def("mn.rate.width", 0.0226964, "mV", kRate, "width of the firing-rate sigmoid R(V)", 0.005, 10);
+    r.q_max = def("mn.rate.q_max", 0.0723646, "1", kRate,
+                  "adaptation drive at full rate: mean of m_q,inf(V) during tonic firing (dm_q/dt = r_q (q_max R - m_q))", 0, 1);
+    r.gain = def("muscle.rate.gain", 0.16773, "1/ms", kRate,
+                 "activation rate of the muscle at full MN rate (spike average of (2.83): da/dt = gain R (1 - a) - b a)", 0, 10);
+    m.set_rate_motoneurons(r);
+  }
   return c;
 }
 
@@ -185,9 +199,9 @@ JointNetwork add_joint_network(NetworkModel& m, const NeuronClasses& c, const st
 }
 
 std::unique_ptr<NetworkModel> build_single_joint_model(const std::string& leg, JointType type,
-                                                       const std::string& thc_set) {
+                                                       const std::string& thc_set, MotoneuronModel mn) {
   auto m = std::make_unique<NetworkModel>("single_joint");
-  NeuronClasses c = define_neuron_classes(*m);
+  NeuronClasses c = define_neuron_classes(*m, mn);
   JointTable t = joint_table(leg, type, thc_set);
   add_joint_network(*m, c, leg, type, 0.5 * (t.angle_min_deg + t.angle_max_deg), thc_set);
   return m;

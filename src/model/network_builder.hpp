@@ -16,7 +16,9 @@ struct NeuronClasses {
   MotoneuronIdx mn;
   SynapseIdx cpg_cpg, in_cpg_inh, in_cpg_exc, in_mn_syn, cpg_in;
 };
-NeuronClasses define_neuron_classes(NetworkModel& m);
+// With MotoneuronModel::Rate it also defines the rate formulation's parameters (mn.rate.*,
+// muscle.rate.gain) and switches the model's motoneurons to it.
+NeuronClasses define_neuron_classes(NetworkModel& m, MotoneuronModel mn = MotoneuronModel::Spiking);
 
 // Neuron indices of one joint network (Fig. 2.12), by function. For each joint the "inc"
 // muscle increases the angle (retractor, levator, flexor), the "dec" muscle decreases it;
@@ -42,6 +44,7 @@ JointNetwork add_joint_network(NetworkModel& m, const NeuronClasses& c, const st
                                CpgToIn wiring = CpgToIn::Parallel);
 
 std::unique_ptr<NetworkModel> build_single_joint_model(const std::string& leg, JointType type,
-                                                       const std::string& thc_set = "");
+                                                       const std::string& thc_set = "",
+                                                       MotoneuronModel mn = MotoneuronModel::Spiking);
 
 }  // namespace phasmid::model

@@ -18,11 +18,22 @@ size_t NetworkModel::add_nap_neuron(const std::string& name, const NapIdx& q, do
 
 size_t NetworkModel::add_motoneuron(const std::string& name, const MotoneuronIdx& q) {
   Neuron n{name, true, add_state(name + ".V", "mV"), {}, q};
-  for (const char* g : {".m_Na", ".h_Na", ".m_K", ".m_q"}) add_state(name + g, "1");
-  // Resting values of the Traub gates near -65 mV.
-  for (double v : {-65.0, 0.02, 0.98, 0.05, 0.0}) y0_.push_back(v);
+  if (rate_mn_) {  // rate formulation: V and the adaptation gate only
+    add_state(name + ".m_q", "1");
+    for (double v : {-65.0, 0.0}) y0_.push_back(v);
+  } else {
+    for (const char* g : {".m_Na", ".h_Na", ".m_K", ".m_q"}) add_state(name + g, "1");
+    // Resting values of the Traub gates near -65 mV.
+    for (double v : {-65.0, 0.02, 0.98, 0.05, 0.0}) y0_.push_back(v);
+  }
   neurons_.push_back(n);
   return neurons_.size() - 1;
+}
+
+MotoneuronModel parse_motoneuron_model(const std::string& s) {
+  if (s == "spiking") return MotoneuronModel::Spiking;
+  if (s == "rate") return MotoneuronModel::Rate;
+  throw Error("unknown motoneuron formulation '" + s + "' (expected spiking or rate)");
 }
 
 size_t NetworkModel::add_muscle(size_t motoneuron, size_t k_rest, size_t k_active, const std::string& name) {

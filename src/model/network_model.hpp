@@ -11,6 +11,8 @@
 //  - sensory thresholds (beta < beta_thr, gamma > gamma_thr): sigmoids of width `*.width_deg`.
 // Both converge to the switched model as the widths go to zero; they keep the right-hand
 // side differentiable so that CVODES sensitivities need no jump conditions.
+// Optionally (MotoneuronModel::Rate) the motoneurons are non-spiking rate cells and the muscle
+// activation follows their firing rate (docs/model.md, "Rate motoneurons").
 #include <string>
 #include <vector>
 
@@ -29,6 +31,15 @@ struct MotoneuronIdx {  // parameter indices of a motoneuron (Section 2.2), same
   size_t v[32];
 };
 struct SynapseIdx { size_t g, V_h, gamma, E; };
+
+// Motoneuron formulation (config key [model] motoneuron): the Hodgkin-Huxley MNs of Section
+// 2.2 with spike-driven muscle activation (2.83)/(2.84), or phasmid's rate formulation
+// (docs/model.md, "Rate motoneurons") without spikes: 2 states per MN instead of 5.
+enum class MotoneuronModel { Spiking, Rate };
+MotoneuronModel parse_motoneuron_model(const std::string& s);
+// Parameters of the rate formulation: firing-rate sigmoid R(V) (midpoint, width), adaptation
+// drive at full rate, muscle activation rate at full rate.
+struct RateMotoneuronIdx { size_t V_half, width, q_max, gain; };
 
 struct Neuron {
   std::string name;   // "middle.fti.cpg_flx"
@@ -92,6 +103,9 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   // ---- assembly -------------------------------------------------------------------------
   size_t define(Parameter p) { return params_.add(std::move(p)); }
   size_t add_nap_neuron(const std::string& name, const NapIdx& q, double V0, double h0);
+  // Call before adding motoneurons: they then get the rate formulation's 2 states.
+  void set_rate_motoneurons(const RateMotoneuronIdx& r) { rate_mn_ = true; rate_ = r; }
+  bool rate_motoneurons() const { return rate_mn_; }
   size_t add_motoneuron(const std::string& name, const MotoneuronIdx& q);
   size_t add_synapse(size_t pre, size_t post, const SynapseIdx& q, PresynapticGate gate = {}) {
     synapses_.push_back({pre, post, q, gate});
@@ -127,6 +141,8 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   std::vector<Joint> joints_;
   std::vector<double> y0_;  // default initial state of neurons and muscles
   size_t act_a0_ = 0, act_b_ = 0, act_V_ = 0, act_w_ = 0;
+  bool rate_mn_ = false;
+  RateMotoneuronIdx rate_{};
 };
 
 template <class T>
@@ -178,7 +194,12 @@ void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
       T* f = &q.C_m;
       for (int k = 0; k < 32; ++k) f[k] = p[n.mn.v[k]];
       q.g_app += g_extra[i];
-      motoneuron_rhs(q, &y[n.state], I_syn[i], &ydot[n.state]);
+      if (rate_mn_) {
+        T R = motoneuron_rate(y[n.state], p[rate_.V_half], p[rate_.width]);
+        rate_motoneuron_rhs(q, p[rate_.q_max], &y[n.state], I_syn[i], R, &ydot[n.state]);
+      } else {
+        motoneuron_rhs(q, &y[n.state], I_syn[i], &ydot[n.state]);
+      }
     } else {
       const NapIdx& x = n.nap;
       NapNeuronParams<T> q{p[x.C_m], p[x.epsilon], p[x.g_NaP], p[x.E_Na], p[x.V_hm], p[x.gamma_m], p[x.V_hh],
@@ -187,11 +208,18 @@ void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
       nap_neuron_rhs(q, y[n.state], y[n.state + 1], I_syn[i], ydot[n.state], ydot[n.state + 1]);
     }
   }
-  // Spike-driven activation, eqs. (2.83)/(2.84) in terms of a = (k - k_rest)/(k_active - k_rest).
+  // Spike-driven activation, eqs. (2.83)/(2.84) in terms of a = (k - k_rest)/(k_active - k_rest);
+  // rate formulation: its average over the spikes, da/dt = gain R(V) (1 - a) - b a.
   for (const Muscle& m : muscles_) {
     const T& a = y[m.activation];
-    T S = smooth_step(T(y[neurons_[m.motoneuron].state] - p[act_V_]), p[act_w_]);
-    ydot[m.activation] = (p[act_a0_] + p[act_b_]) * S * (1.0 - a) - p[act_b_] * (1.0 - S) * a;
+    const T& V = y[neurons_[m.motoneuron].state];
+    if (rate_mn_) {
+      T R = motoneuron_rate(V, p[rate_.V_half], p[rate_.width]);
+      ydot[m.activation] = p[rate_.gain] * R * (1.0 - a) - p[act_b_] * a;
+    } else {
+      T S = smooth_step(T(V - p[act_V_]), p[act_w_]);
+      ydot[m.activation] = (p[act_a0_] + p[act_b_]) * S * (1.0 - a) - p[act_b_] * (1.0 - S) * a;
+    }
   }
   for (const Joint& j : joints_) {
     const Muscle& mi = muscles_[j.muscle_inc];

@@ -78,6 +78,31 @@ void motoneuron_rhs(const MotoneuronParams<P>& q, const T* s, const T& I_syn, T*
   ds[4] = q.r_q * (mq_inf - mq);                                             // (2.16)
 }
 
+// Rate (non-spiking) motoneuron, phasmid's reduced formulation (docs/model.md, "Rate
+// motoneurons"): the membrane equation (2.2) without the fast spike currents I_Na, I_K, so V
+// is the subthreshold ("would-be") potential set by leak, drive, synapses and adaptation; the
+// firing is a smooth normalised rate R(V) = 1 / (1 + exp(-(V - V_half) / width)) in [0, 1], and
+// the adaptation gate follows the time average of its spike-driven input: dm_q/dt =
+// r_q (q_max R - m_q) (q_max: mean of m_q,inf(V) over a cycle of tonic firing at full rate).
+// State order: V, m_q. Uses C_m, g_q, E_q, r_q, g_L, E_L, g_app, E_app of MotoneuronParams.
+template <class T, class P>
+T motoneuron_rate(const T& V, const P& V_half, const P& width) {
+  using std::exp;
+  return T(1.0) / (T(1.0) + exp(-(V - V_half) / width));
+}
+
+template <class T, class P>
+void rate_motoneuron_rhs(const MotoneuronParams<P>& q, const P& q_max, const T* s, const T& I_syn, const T& R,
+                         T* ds) {
+  const T& V = s[0];
+  const T& mq = s[1];
+  T I_q = q.g_q * mq * (V - q.E_q);
+  T I_L = q.g_L * (V - q.E_L);
+  T I_app = q.g_app * (V - q.E_app);
+  ds[0] = -(I_q + I_L + I_syn + I_app) / q.C_m;
+  ds[1] = q.r_q * (q_max * R - mq);
+}
+
 // Synaptic current (2.7) into a cell at V from a presynaptic cell at V_pre.
 template <class T, class P>
 T synaptic_current(const P& g_syn, const P& V_hs, const P& gamma_s, const P& E_syn, const T& V_pre, const T& V) {

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -39,9 +40,11 @@ struct CallbackData {
   std::vector<JetK> yK, pK, fK;
   std::vector<Jet1> y1, p1, f1;
   long sens_evals = 0;
-  // Sparse (KLU) Jacobians: column-compressed pattern and the dense scratch it is filled from.
+  // Sparse (KLU) Jacobians: column-compressed pattern and a column colouring (columns of one
+  // colour share no row, so one AD direction per colour gives all of them: Curtis-Powell-Reid).
   std::vector<sunindextype> col_ptr, row_idx;
-  std::vector<double> dense_scratch;
+  std::vector<size_t> color;
+  size_t n_colors = 0;
 };
 
 int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* ud) {
@@ -85,17 +88,27 @@ int jac_band_cb(sunrealtype t, N_Vector y, N_Vector, SUNMatrix Jm, void* ud, N_V
   return 0;
 }
 
+// Values `v` (in the order of d->row_idx) of the sparse Jacobian by coloured forward-mode AD:
+// ceil(n_colors / chunk) evaluations instead of ceil(n / chunk).
+void fill_sparse_jacobian(CallbackData* d, double t, const double* yv, double* v) {
+  for (size_t c0 = 0; c0 < d->n_colors; c0 += kJacobianChunk) {
+    for (size_t i = 0; i < d->n; ++i) {
+      d->yK[i] = JetK(yv[i]);
+      if (d->color[i] >= c0 && d->color[i] < c0 + kJacobianChunk) d->yK[i].v[d->color[i] - c0] = 1.0;
+    }
+    d->model->rhs(t, d->yK.data(), d->pK.data(), d->fK.data());
+    for (size_t j = 0; j < d->n; ++j) {
+      if (d->color[j] < c0 || d->color[j] >= c0 + kJacobianChunk) continue;
+      for (sunindextype k = d->col_ptr[j]; k < d->col_ptr[j + 1]; ++k) v[k] = d->fK[d->row_idx[k]].v[d->color[j] - c0];
+    }
+  }
+}
+
 int jac_sparse_cb(sunrealtype t, N_Vector y, N_Vector, SUNMatrix Jm, void* ud, N_Vector, N_Vector, N_Vector) {
   auto* d = static_cast<CallbackData*>(ud);
-  d->dense_scratch.resize(d->n * d->n);
-  fill_jacobian(d, t, N_VGetArrayPointer(y), d->dense_scratch.data());
-  sunindextype* cp = SUNSparseMatrix_IndexPointers(Jm);
-  sunindextype* ri = SUNSparseMatrix_IndexValues(Jm);
-  sunrealtype* v = SUNSparseMatrix_Data(Jm);
-  std::copy(d->col_ptr.begin(), d->col_ptr.end(), cp);
-  std::copy(d->row_idx.begin(), d->row_idx.end(), ri);
-  for (size_t j = 0; j < d->n; ++j)
-    for (sunindextype k = d->col_ptr[j]; k < d->col_ptr[j + 1]; ++k) v[k] = d->dense_scratch[j * d->n + d->row_idx[k]];
+  std::copy(d->col_ptr.begin(), d->col_ptr.end(), SUNSparseMatrix_IndexPointers(Jm));
+  std::copy(d->row_idx.begin(), d->row_idx.end(), SUNSparseMatrix_IndexValues(Jm));
+  fill_sparse_jacobian(d, t, N_VGetArrayPointer(y), SUNSparseMatrix_Data(Jm));
   return 0;
 }
 
@@ -110,9 +123,12 @@ void sparsity_pattern(CallbackData* d, const std::vector<double>& y0) {
     state ^= state << 13; state ^= state >> 7; state ^= state << 17;
     return (state >> 11) * (1.0 / 9007199254740992.0);
   };
-  for (int sample = 0; sample < 4; ++sample) {
-    for (size_t i = 0; i < n; ++i) y[i] = sample == 0 ? y0[i] : y0[i] + (uniform() - 0.5) * (0.2 + 0.2 * std::abs(y0[i]));
-    fill_jacobian(d, 0.0, y.data(), J.data());
+  // Samples at t = 0 and at a late time, so that entries gated by central commands (steps at
+  // given times, zero before them) are in the pattern too: with coloured Jacobians an entry
+  // missing from the pattern would be added to another column of its colour.
+  for (int sample = 0; sample < 8; ++sample) {
+    for (size_t i = 0; i < n; ++i) y[i] = sample % 4 == 0 ? y0[i] : y0[i] + (uniform() - 0.5) * (0.2 + 0.2 * std::abs(y0[i]));
+    fill_jacobian(d, sample < 4 ? 0.0 : 1e10, y.data(), J.data());
     for (size_t k = 0; k < n * n; ++k)
       if (J[k] != 0.0) nz[k] = 1;
   }
@@ -122,6 +138,22 @@ void sparsity_pattern(CallbackData* d, const std::vector<double>& y0) {
     for (size_t i = 0; i < n; ++i)
       if (nz[j * n + i] || i == j) d->row_idx.push_back(static_cast<sunindextype>(i));
     d->col_ptr.push_back(static_cast<sunindextype>(d->row_idx.size()));
+  }
+  // Greedy colouring: a column takes the smallest colour not used by a column sharing a row.
+  std::vector<std::vector<size_t>> cols_of_row(n);
+  for (size_t j = 0; j < n; ++j)
+    for (sunindextype k = d->col_ptr[j]; k < d->col_ptr[j + 1]; ++k) cols_of_row[d->row_idx[k]].push_back(j);
+  d->color.assign(n, SIZE_MAX);
+  d->n_colors = 0;
+  std::vector<size_t> used_by(n + 1, SIZE_MAX);  // used_by[c] == j: colour c is taken for column j
+  for (size_t j = 0; j < n; ++j) {
+    for (sunindextype k = d->col_ptr[j]; k < d->col_ptr[j + 1]; ++k)
+      for (size_t other : cols_of_row[d->row_idx[k]])
+        if (d->color[other] != SIZE_MAX) used_by[d->color[other]] = j;
+    size_t c = 0;
+    while (used_by[c] == j) ++c;
+    d->color[j] = c;
+    d->n_colors = std::max(d->n_colors, c + 1);
   }
 }
 
@@ -192,8 +224,8 @@ std::vector<double> output_grid(double t_end, double dt) {
   return t;
 }
 
-std::vector<double> jacobian_autodiff(const OdeModel& model, double t, const std::vector<double>& y,
-                                      const std::vector<double>& p) {
+namespace {
+CallbackData jacobian_data(const OdeModel& model, const std::vector<double>& p) {
   CallbackData d;
   d.model = &model;
   d.p = &p;
@@ -201,8 +233,27 @@ std::vector<double> jacobian_autodiff(const OdeModel& model, double t, const std
   d.yK.resize(d.n);
   d.fK.resize(d.n);
   for (double v : p) d.pK.emplace_back(v);
+  return d;
+}
+}  // namespace
+
+std::vector<double> jacobian_autodiff(const OdeModel& model, double t, const std::vector<double>& y,
+                                      const std::vector<double>& p) {
+  CallbackData d = jacobian_data(model, p);
   std::vector<double> J(d.n * d.n);
   fill_jacobian(&d, t, y.data(), J.data());
+  return J;
+}
+
+std::vector<double> jacobian_sparse_autodiff(const OdeModel& model, double t, const std::vector<double>& y,
+                                             const std::vector<double>& p, size_t* n_colors) {
+  CallbackData d = jacobian_data(model, p);
+  sparsity_pattern(&d, model.initial_state(p));
+  if (n_colors) *n_colors = d.n_colors;
+  std::vector<double> v(d.row_idx.size()), J(d.n * d.n, 0.0);
+  fill_sparse_jacobian(&d, t, y.data(), v.data());
+  for (size_t j = 0; j < d.n; ++j)
+    for (sunindextype k = d.col_ptr[j]; k < d.col_ptr[j + 1]; ++k) J[j * d.n + d.row_idx[k]] = v[k];
   return J;
 }
 

@@ -90,5 +90,10 @@ std::vector<double> output_grid(double t_end, double dt);
 // Dense Jacobian df/dy at (t, y) from the templated right-hand side (column-major n x n).
 std::vector<double> jacobian_autodiff(const model::OdeModel& model, double t, const std::vector<double>& y,
                                       const std::vector<double>& p);
+// The same Jacobian as the KLU path computes it: structural pattern sampled around the initial
+// state, columns coloured so that columns sharing no row are differentiated together
+// (n_colors: how many directions that takes instead of n). Dense column-major, for tests.
+std::vector<double> jacobian_sparse_autodiff(const model::OdeModel& model, double t, const std::vector<double>& y,
+                                             const std::vector<double>& p, size_t* n_colors = nullptr);
 
 }  // namespace phasmid::solver

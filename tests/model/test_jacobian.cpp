@@ -45,3 +45,15 @@ TEST(Jacobian, SingleJointNetworkMatchesFiniteDifferences) {
   std::vector<double> y(r.y.begin() + m->num_states(), r.y.end());
   expect_jacobian_matches_fd(*m, y, 1234.0);
 }
+
+TEST(Jacobian, RateMotoneuronNetworkMatchesFiniteDifferences) {
+  // The rate formulation (docs/model.md): rate MN states and the rate-driven activation.
+  auto m = model::build_single_joint_model("middle", model::JointType::Fti, "", model::MotoneuronModel::Rate);
+  solver::Simulator sim(*m);
+  // 1234 ms: the flexor MN is firing (R ~ 1); 1500 ms: during the switch.
+  for (double t : {1234.0, 1500.0}) {
+    auto r = sim.run(m->parameters().values(), {0.0, t});
+    std::vector<double> y(r.y.begin() + m->num_states(), r.y.end());
+    expect_jacobian_matches_fd(*m, y, t);
+  }
+}
