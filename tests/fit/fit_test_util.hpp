@@ -7,6 +7,7 @@
 #include <string>
 
 #include "config/config.hpp"
+#include "fit/fit_config.hpp"
 #include "fit/fit_problem.hpp"
 #include "fit/kinematic_data.hpp"
 #include "fit/parameter_table.hpp"
@@ -55,6 +56,22 @@ inline std::vector<fit::FitParameter> fti_parameters(const model::OdeModel& m, d
     ps.push_back(p);
   }
   return ps;
+}
+
+// A shipped fit config loaded as `phasmid fit` loads it: model, [fit] spec and problem.
+struct ShippedFit {
+  config::Config cfg;
+  std::unique_ptr<model::OdeModel> model;
+  fit::FitSpec spec;
+  std::unique_ptr<fit::FitProblem> problem;
+};
+inline ShippedFit load_shipped_fit(const std::string& rel) {
+  ShippedFit f;
+  f.cfg = config::load_config(source(rel));
+  f.model = config::build_model(f.cfg);
+  f.spec = fit::load_fit_spec(f.cfg, *f.model);
+  f.problem = std::make_unique<fit::FitProblem>(*f.model, f.spec.parameters, f.spec.targets, f.spec.problem);
+  return f;
 }
 
 }  // namespace phasmid::fittest

@@ -11,10 +11,9 @@
 using namespace phasmid;
 
 TEST(FitGapp, ReachesPeriod510AndOneToOneFromAStart20PercentOff) {
-  auto cfg = config::load_config(fittest::source("configs/fit_single_joint_gapp.toml"));
-  auto m = config::build_model(cfg);
-  fit::FitSpec spec = fit::load_fit_spec(cfg, *m);
-  fit::FitProblem p(*m, spec.parameters, spec.targets, spec.problem);
+  auto f = fittest::load_shipped_fit("configs/fit_single_joint_gapp.toml");
+  auto& spec = f.spec;
+  fit::FitProblem& p = *f.problem;
   auto start = p.to_linear(p.start());
   ASSERT_NEAR(start[0] / 0.209, 1.2, 1e-9);  // extensor drive +20 %
   ASSERT_NEAR(start[1] / 0.100, 0.8, 1e-9);  // flexor drive -20 %

@@ -15,10 +15,10 @@
 using namespace phasmid;
 
 TEST(FitTripod, ReachesStepPeriod442AndOneToOneFromTheTetrapodDrives) {
-  auto cfg = config::load_config(fittest::source("configs/fit_tripod_drives.toml"));
-  auto m = config::build_model(cfg);
-  fit::FitSpec spec = fit::load_fit_spec(cfg, *m);
-  fit::FitProblem p(*m, spec.parameters, spec.targets, spec.problem);
+  auto f = fittest::load_shipped_fit("configs/fit_tripod_drives.toml");
+  auto& m = f.model;
+  auto& spec = f.spec;
+  fit::FitProblem& p = *f.problem;
   ASSERT_EQ(spec.targets.features[0].feature, "middle.step_period_ms");
   ASSERT_EQ(spec.targets.features[1].feature, "middle.ctr.levation_fraction");
   auto start = p.to_linear(p.start());
@@ -41,7 +41,7 @@ TEST(FitTripod, ReachesStepPeriod442AndOneToOneFromTheTetrapodDrives) {
   features::FeatureOptions fo;
   fo.discard_ms = spec.problem.discard_ms;
   double gait = -1;
-  for (auto& f : features::compute_features(*m, best, fo))
-    if (f.name == "gait_class") gait = f.value;
+  for (auto& x : features::compute_features(*m, best, fo))
+    if (x.name == "gait_class") gait = x.value;
   EXPECT_EQ(gait, 2.0) << "tripod";
 }
