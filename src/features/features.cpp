@@ -116,17 +116,20 @@ size_t find_state(const model::OdeModel& model, const std::string& name) {
   return kNoState;
 }
 
-std::vector<LegRoot> leg_roots(const model::OdeModel& model) {
+// Levels from the parameter vector p (empty: the model's own values).
+std::vector<LegRoot> leg_roots(const model::OdeModel& model, const std::vector<double>& p = {}) {
   std::vector<LegRoot> out;
-  const bool has_level = model.parameters().contains("syn.cpg_in.V_h");
+  const auto& ps = model.parameters();
+  auto value = [&](const std::string& name) { return p.empty() ? ps.value(name) : p.at(ps.index(name)); };
+  const bool has_level = ps.contains("syn.cpg_in.V_h");
   for (const auto& ch : model.angles()) {
     if (ch.joint != "ctr") continue;
     const std::string thr = ch.leg + ".coupling.beta_thr_pr";
-    if (!model.parameters().contains(thr)) continue;
-    LegRoot r{ch.leg, ch.angle_state, model.parameters().value(thr)};
+    if (!ps.contains(thr)) continue;
+    LegRoot r{ch.leg, ch.angle_state, value(thr)};
     if (has_level) {
       r.retractor_state = find_state(model, ch.leg + ".thc.cpg_ret.V");
-      r.retractor_level_mV = model.parameters().value("syn.cpg_in.V_h");
+      r.retractor_level_mV = value("syn.cpg_in.V_h");
     }
     out.push_back(r);
   }
@@ -163,47 +166,94 @@ std::vector<const solver::Event*> debounced_events(const solver::SolveResult& re
   return ev;
 }
 
+// A located event as a Dual: its time and, with gradients, dt*/dp by the implicit-function
+// formula, including the shift of the crossing level when the level itself is a sensitivity
+// parameter (dlevel: d level / d p_j in the state's unit): dt*/dp = (dlevel - s) / f.
+struct EventDual {
+  const solver::Event* e;
+  Dual t;
+};
+EventDual event_dual(const solver::Event& e, const solver::RootSpec& root, size_t ns, bool with_grad,
+                     const Eigen::VectorXd& dlevel) {
+  EventDual x{&e, {e.t, Eigen::VectorXd::Zero(ns)}};
+  if (with_grad && ns) x.t.g = sensitivity::event_time_sensitivity(e, root, ns) + dlevel / e.ydot.at(root.state);
+  return x;
+}
+// The angle (deg) of state i at an event, with its total derivative.
+Dual angle_at(const EventDual& x, size_t i, size_t ns, bool with_grad) {
+  Dual a{x.e->y.at(i) * kDeg, Eigen::VectorXd::Zero(ns)};
+  if (with_grad && ns) a.g = sensitivity::state_at_event_sensitivity(*x.e, i, x.t.g) * kDeg;
+  return a;
+}
+// d level / d p_j for the sensitivity parameters: `factor` for the model parameter `name`.
+Eigen::VectorXd level_gradient(const model::OdeModel& model, const solver::SolveResult& res, size_t ns,
+                               const std::string& name, double factor) {
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(ns);
+  if (ns == 0 || !model.parameters().contains(name)) return g;
+  const size_t k = model.parameters().index(name);
+  for (size_t j = 0; j < ns; ++j)
+    if (res.sens_params[j] == k) g[j] = factor;
+  return g;
+}
+
 // Intervals [begin, end) during which a debounced two-state signal is "on", clipped to
-// [t0, t1]; `on_direction` is the crossing direction that switches it on.
-using Intervals = std::vector<std::pair<double, double>>;
-Intervals on_intervals(const std::vector<const solver::Event*>& ev, int on_direction, double t0, double t1) {
+// [t0, t1] (clipped ends carry no gradient); `on_direction` is the crossing that switches it on.
+using Intervals = std::vector<std::pair<Dual, Dual>>;
+Intervals on_intervals(const std::vector<EventDual>& ev, int on_direction, double t0, double t1, size_t ns) {
   Intervals out;
   if (ev.empty()) return out;
-  double start = ev.front()->direction == on_direction ? -1.0 : t0;  // on before the first event?
-  for (const solver::Event* e : ev) {
-    if (e->direction == on_direction) start = e->t;
-    else if (start >= 0) {
-      out.push_back({start, e->t});
-      start = -1.0;
+  const Dual start0{t0, Eigen::VectorXd::Zero(ns)}, end1{t1, Eigen::VectorXd::Zero(ns)};
+  bool on = ev.front().e->direction != on_direction;  // on before the first event?
+  Dual start = start0;
+  for (const EventDual& x : ev) {
+    if (x.e->direction == on_direction) {
+      start = x.t;
+      on = true;
+    } else if (on) {
+      out.push_back({start, x.t});
+      on = false;
     }
   }
-  if (start >= 0) out.push_back({start, t1});
+  if (on) out.push_back({start, end1});
   return out;
 }
 
-double total(const Intervals& a) {
-  double s = 0;
-  for (auto& x : a) s += x.second - x.first;
+Dual total(const Intervals& a, size_t ns) {
+  Dual s{0.0, Eigen::VectorXd::Zero(ns)};
+  for (auto& x : a) s = s + (x.second - x.first);
   return s;
 }
 
-double overlap(const Intervals& a, const Intervals& b) {
-  double s = 0;
+Dual overlap(const Intervals& a, const Intervals& b, size_t ns) {
+  Dual s{0.0, Eigen::VectorXd::Zero(ns)};
   for (auto& x : a)
-    for (auto& y : b) s += std::max(0.0, std::min(x.second, y.second) - std::max(x.first, y.first));
+    for (auto& y : b) {
+      const Dual& hi = x.second.v < y.second.v ? x.second : y.second;
+      const Dual& lo = x.first.v > y.first.v ? x.first : y.first;
+      if (hi.v > lo.v) s = s + (hi - lo);
+    }
   return s;
 }
 
 double wrap01(double x) { return x - std::floor(x); }
 
-// Circular mean of phases in [0, 1).
-double circular_mean(const std::vector<double>& ph) {
+// Circular mean of phases (values in any turn; result in [0, 1)) with its derivative:
+// theta = atan2(S, C) / 2 pi, S = sum sin 2 pi phi, C = sum cos 2 pi phi.
+Dual circular_mean(const std::vector<Dual>& ph, size_t ns) {
   double c = 0, s = 0;
-  for (double x : ph) {
-    c += std::cos(2 * M_PI * x);
-    s += std::sin(2 * M_PI * x);
+  Eigen::VectorXd dc = Eigen::VectorXd::Zero(ns), ds = Eigen::VectorXd::Zero(ns);
+  for (const Dual& x : ph) {
+    const double w = 2 * M_PI * x.v;
+    c += std::cos(w);
+    s += std::sin(w);
+    if (ns) {
+      dc -= std::sin(w) * 2 * M_PI * x.g;
+      ds += std::cos(w) * 2 * M_PI * x.g;
+    }
   }
-  return wrap01(std::atan2(s, c) / (2 * M_PI));
+  Dual m{wrap01(std::atan2(s, c) / (2 * M_PI)), Eigen::VectorXd::Zero(ns)};
+  if (ns) m.g = (c * ds - s * dc) / ((c * c + s * s) * 2 * M_PI);
+  return m;
 }
 
 double circ_dist(double a, double b) {
@@ -211,120 +261,128 @@ double circ_dist(double a, double b) {
   return std::min(d, 1.0 - d);
 }
 
-std::vector<Feature> leg_features(const model::OdeModel& model, const solver::SolveResult& res,
-                                  const FeatureOptions& opt) {
-  std::vector<Feature> out;
+struct DualFeature {
+  std::string name;
+  Dual value;
+  std::string unit;
+};
+
+std::vector<DualFeature> leg_features(const model::OdeModel& model, const solver::SolveResult& res,
+                                      const FeatureOptions& opt, bool with_grad) {
+  const size_t ns = with_grad ? res.sens_params.size() : 0;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ns);
+  std::vector<DualFeature> out;
   const std::vector<LegRoot> legs = leg_roots(model);
+  const std::vector<solver::RootSpec> roots = feature_roots(model);
   const size_t first = opt.root_offset + model.angles().size();
+  const size_t first_spec = model.angles().size();  // the same roots in feature_roots' own order
   // Roots of the retractor CPGs follow the beta roots, one per leg that has one (feature_roots).
   std::vector<size_t> retractor_root(legs.size(), 0);
-  for (size_t l = 0, k = first + legs.size(); l < legs.size(); ++l)
+  for (size_t l = 0, k = legs.size(); l < legs.size(); ++l)
     if (legs[l].retractor_state != kNoState) retractor_root[l] = k++;
-  std::map<std::string, std::vector<double>> liftoffs;
-  std::map<std::string, double> periods;
+  std::map<std::string, std::vector<Dual>> liftoffs;
+  std::map<std::string, Dual> periods;
+  auto mean_of = [&](const std::vector<Dual>& v) { return mean(v, ns); };
   for (size_t l = 0; l < legs.size(); ++l) {
-    std::vector<double> td, lo;  // touch-down, lift-off times
-    std::map<double, const solver::Event*> at;
+    const std::string pre = legs[l].leg + ".";
     // Debounce: a swing or stance episode shorter than min_contact_ms (beta rippling around
     // the threshold while a motoneuron fires) is removed with its two crossings.
-    const std::vector<const solver::Event*> ev = debounced_events(res, first + l, opt.discard_ms, opt.min_contact_ms);
-    for (const solver::Event* e : ev) {
-      (e->direction < 0 ? td : lo).push_back(e->t);
-      at[e->t] = e;
-    }
+    const solver::RootSpec& beta_root = roots[first_spec + l];
+    const Eigen::VectorXd dthr = level_gradient(model, res, ns, pre + "coupling.beta_thr_pr", M_PI / 180.0);
+    std::vector<EventDual> ev;
+    for (const solver::Event* e : debounced_events(res, first + l, opt.discard_ms, opt.min_contact_ms))
+      ev.push_back(event_dual(*e, beta_root, ns, with_grad, dthr));
+    std::vector<EventDual> td, lo;  // touch-down (beta falling), lift-off (rising)
+    for (const EventDual& x : ev) (x.e->direction < 0 ? td : lo).push_back(x);
+    auto next_after = [](const std::vector<EventDual>& v, double t) {
+      return std::upper_bound(v.begin(), v.end(), t, [](double a, const EventDual& b) { return a < b.t.v; });
+    };
     // Joint excursions during stance (angle at lift-off minus angle at touch-down), deg:
     // thc > 0 retraction during stance (forward stepping), fti < 0 extension during stance.
     for (const auto& ch : model.angles()) {
       if (ch.leg != legs[l].leg || ch.joint == "ctr") continue;
-      std::vector<double> d;
-      for (double t : td) {
-        auto it = std::upper_bound(lo.begin(), lo.end(), t);
-        if (it != lo.end()) d.push_back((at[*it]->y[ch.angle_state] - at[t]->y[ch.angle_state]) * kDeg);
+      std::vector<Dual> d;
+      for (const EventDual& x : td) {
+        auto it = next_after(lo, x.t.v);
+        if (it != lo.end()) d.push_back(angle_at(*it, ch.angle_state, ns, with_grad) - angle_at(x, ch.angle_state, ns, with_grad));
       }
-      if (!d.empty()) {
-        double a = 0;
-        for (double x : d) a += x;
-        out.push_back({legs[l].leg + "." + ch.joint + ".stance_change_deg", a / d.size(), "deg"});
-      }
+      if (!d.empty()) out.push_back({pre + ch.joint + ".stance_change_deg", mean_of(d), "deg"});
     }
-    const std::string pre = legs[l].leg + ".";
-    std::vector<double> stance, swing;
-    for (double t : td) {
-      auto it = std::upper_bound(lo.begin(), lo.end(), t);
-      if (it != lo.end()) stance.push_back(*it - t);
+    std::vector<Dual> stance, swing;
+    for (const EventDual& x : td) {
+      auto it = next_after(lo, x.t.v);
+      if (it != lo.end()) stance.push_back(it->t - x.t);
     }
-    for (double t : lo) {
-      auto it = std::upper_bound(td.begin(), td.end(), t);
-      if (it != td.end()) swing.push_back(*it - t);
+    for (const EventDual& x : lo) {
+      auto it = next_after(td, x.t.v);
+      if (it != td.end()) swing.push_back(it->t - x.t);
     }
-    auto avg = [](const std::vector<double>& v) {
-      double a = 0;
-      for (double x : v) a += x;
-      return a / v.size();
-    };
     if (lo.size() >= 2) {
-      double T = (lo.back() - lo.front()) / (lo.size() - 1);
+      Dual T = scaled(lo.back().t - lo.front().t, 1.0 / (lo.size() - 1));
       out.push_back({pre + "step_period_ms", T, "ms"});
       periods[legs[l].leg] = T;
-      liftoffs[legs[l].leg] = lo;
+      for (const EventDual& x : lo) liftoffs[legs[l].leg].push_back(x.t);
     }
-    if (!stance.empty()) out.push_back({pre + "stance_ms", avg(stance), "ms"});
-    if (!swing.empty()) out.push_back({pre + "swing_ms", avg(swing), "ms"});
+    if (!stance.empty()) out.push_back({pre + "stance_ms", mean_of(stance), "ms"});
+    if (!swing.empty()) out.push_back({pre + "swing_ms", mean_of(swing), "ms"});
     if (!stance.empty() && !swing.empty())
-      out.push_back({pre + "duty_factor", avg(stance) / (avg(stance) + avg(swing)), "1"});
+      out.push_back({pre + "duty_factor", mean_of(stance) / (mean_of(stance) + mean_of(swing)), "1"});
     // Figs. 3.20 / 3.22: does the PR system's protraction (retractor CPG inactive) fall into the
     // swing, and its retraction into the stance? Over the whole analysed window, both as
     // fractions: of the protraction time spent in ground contact, of the stance time with the
     // retractor CPG active.
     if (legs[l].retractor_state != kNoState && !ev.empty()) {
       const double t0 = opt.discard_ms, t1 = res.t.empty() ? t0 : res.t.back();
-      const auto cpg = debounced_events(res, retractor_root[l], opt.discard_ms, opt.min_contact_ms);
-      const Intervals stance_iv = on_intervals(ev, -1, t0, t1);  // beta falling: touch-down
-      const Intervals retract = on_intervals(cpg, +1, t0, t1);   // V rising: retractor on
-      const Intervals protract = on_intervals(cpg, -1, t0, t1);
-      if (cpg.size() >= 2 && total(protract) > 0 && total(stance_iv) > 0) {
-        out.push_back({pre + "protraction_in_stance_fraction", overlap(protract, stance_iv) / total(protract), "1"});
-        out.push_back({pre + "stance_retraction_fraction", overlap(retract, stance_iv) / total(stance_iv), "1"});
+      const solver::RootSpec& cpg_root = roots[first_spec + retractor_root[l]];
+      const Eigen::VectorXd dvh = level_gradient(model, res, ns, "syn.cpg_in.V_h", 1.0);
+      std::vector<EventDual> cpg;
+      for (const solver::Event* e : debounced_events(res, opt.root_offset + first_spec + retractor_root[l],
+                                                     opt.discard_ms, opt.min_contact_ms))
+        cpg.push_back(event_dual(*e, cpg_root, ns, with_grad, dvh));
+      const Intervals stance_iv = on_intervals(ev, -1, t0, t1, ns);  // beta falling: touch-down
+      const Intervals retract = on_intervals(cpg, +1, t0, t1, ns);   // V rising: retractor on
+      const Intervals protract = on_intervals(cpg, -1, t0, t1, ns);
+      const Dual prot = total(protract, ns), st = total(stance_iv, ns);
+      if (cpg.size() >= 2 && prot.v > 0 && st.v > 0) {
+        out.push_back({pre + "protraction_in_stance_fraction", overlap(protract, stance_iv, ns) / prot, "1"});
+        out.push_back({pre + "stance_retraction_fraction", overlap(retract, stance_iv, ns) / st, "1"});
       }
     }
   }
   // Phase lag of leg b after leg a: (lift-off of b - preceding lift-off of a) / period of a,
   // circular mean over the cycles after the transient, in [0, 1).
-  auto lag = [&](const std::string& a, const std::string& b, double& value) {
+  auto lag = [&](const std::string& a, const std::string& b, Dual& value) {
     if (!liftoffs.count(a) || !liftoffs.count(b)) return false;
     const auto& la = liftoffs[a];
-    std::vector<double> ph;
-    for (double t : liftoffs[b]) {
-      auto it = std::upper_bound(la.begin(), la.end(), t);
+    std::vector<Dual> ph;
+    for (const Dual& t : liftoffs[b]) {
+      auto it = std::upper_bound(la.begin(), la.end(), t.v, [](double x, const Dual& y) { return x < y.v; });
       if (it == la.begin()) continue;
-      ph.push_back(wrap01((t - *(it - 1)) / periods[a]));
+      Dual p = (t - *(it - 1)) / periods[a];
+      p.v = wrap01(p.v);  // whole turns do not change the phase or its derivative
+      ph.push_back(p);
     }
     if (ph.empty()) return false;
-    value = circular_mean(ph);
+    value = circular_mean(ph, ns);
     return true;
   };
   const char* pairs[][2] = {{"hind", "middle"}, {"middle", "front"}, {"front", "hind"}, {"hind", "front"}};
   std::map<std::string, double> lags;
   for (auto& pr : pairs) {
-    double v = 0.0;
+    Dual v{0.0, zero};
     if (lag(pr[0], pr[1], v)) {
-      lags[std::string(pr[0]) + "_to_" + pr[1]] = v;
+      lags[std::string(pr[0]) + "_to_" + pr[1]] = v.v;
       out.push_back({std::string("phase_lag.") + pr[0] + "_to_" + pr[1], v, "1"});
     }
   }
   if (lags.count("hind_to_middle") && lags.count("middle_to_front") && lags.count("hind_to_front")) {
-    out.push_back({"gait_class", static_cast<double>(classify_gait(lags["hind_to_middle"], lags["middle_to_front"],
-                                                                   lags["hind_to_front"])),
+    // A class, piecewise constant in the parameters: zero gradient.
+    out.push_back({"gait_class",
+                   {static_cast<double>(classify_gait(lags["hind_to_middle"], lags["middle_to_front"], lags["hind_to_front"])), zero},
                    "1"});
   }
   return out;
 }
-
-struct DualFeature {
-  std::string name;
-  Dual value;
-  std::string unit;
-};
 
 std::vector<DualFeature> compute(const model::OdeModel& model, const solver::SolveResult& res,
                                  const FeatureOptions& opt, bool with_grad) {
@@ -381,18 +439,18 @@ std::vector<DualFeature> compute(const model::OdeModel& model, const solver::Sol
     if (!a_min.empty()) out.push_back({pre + "angle_min_deg", mean(a_min, ns), "deg"});
     if (!a_max.empty()) out.push_back({pre + "angle_max_deg", mean(a_max, ns), "deg"});
   }
-  if (!with_grad) {
-    for (auto& f : leg_features(model, res, opt)) out.push_back({f.name, {f.value, {}}, f.unit});
-  }
+  for (auto& f : leg_features(model, res, opt, with_grad)) out.push_back(std::move(f));
   return out;
 }
 
 }  // namespace
 
-std::vector<solver::RootSpec> feature_roots(const model::OdeModel& model) {
+std::vector<solver::RootSpec> feature_roots(const model::OdeModel& model) { return feature_roots(model, {}); }
+
+std::vector<solver::RootSpec> feature_roots(const model::OdeModel& model, const std::vector<double>& p) {
   std::vector<solver::RootSpec> roots;
   for (const auto& ch : model.angles()) roots.push_back({ch.velocity_state, 0.0, 0});
-  const std::vector<LegRoot> legs = leg_roots(model);
+  const std::vector<LegRoot> legs = leg_roots(model, p);
   for (const auto& l : legs) roots.push_back({l.beta_state, l.threshold_deg * M_PI / 180.0, 0});
   for (const auto& l : legs)
     if (l.retractor_state != kNoState) roots.push_back({l.retractor_state, l.retractor_level_mV, 0});

@@ -53,6 +53,10 @@ const char* gait_class_name(int gait_class);
 // (touch-down falling, lift-off rising), used by the per-leg gait features; then one per leg
 // with a PR network: its retractor CPG `<leg>.thc.cpg_ret.V` crossing `syn.cpg_in.V_h`.
 // Pass these first in the root list given to Simulator::run (or set FeatureOptions::root_offset).
+// The crossing levels come from the parameter vector p (the model's own values without it):
+// pass the vector the run uses, so that a run with a perturbed or fitted threshold locates its
+// crossings at that threshold.
+std::vector<solver::RootSpec> feature_roots(const model::OdeModel& model, const std::vector<double>& p);
 std::vector<solver::RootSpec> feature_roots(const model::OdeModel& model);
 
 // Features of every angle channel `<leg>.<joint>` (see docs/features.md):
@@ -60,8 +64,8 @@ std::vector<solver::RootSpec> feature_roots(const model::OdeModel& model);
 //   angle_min_deg, angle_max_deg; plus a global `period_ms` (the first channel's period).
 // Walking models add per leg `<leg>.step_period_ms`, `<leg>.stance_ms`, `<leg>.swing_ms`,
 // `<leg>.duty_factor`, `<leg>.protraction_in_stance_fraction`, `<leg>.stance_retraction_fraction`,
-// and across legs `phase_lag.<a>_to_<b>` and `gait_class` (values only,
-// no gradients; docs/walking_model.md).
+// and across legs `phase_lag.<a>_to_<b>` and `gait_class` (docs/walking_model.md); all with
+// event-time gradients, gait_class with a zero one.
 // Features that cannot be computed (too few cycles after discard_ms) are omitted.
 std::vector<Feature> compute_features(const model::OdeModel& model, const solver::SolveResult& result,
                                       const FeatureOptions& options = {});

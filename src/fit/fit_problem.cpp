@@ -44,9 +44,9 @@ std::set<std::string> known_features(const model::OdeModel& m) {
   return f;
 }
 
-// Per-leg features of the walking models (features::compute_features): values only, no
-// gradients, so usable with derivative-free optimisers only.
-std::set<std::string> value_only_features(const model::OdeModel& m) {
+// Per-leg features of the walking models (features::compute_features), with event-time
+// gradients like the channel features.
+std::set<std::string> leg_feature_names(const model::OdeModel& m) {
   std::set<std::string> f;
   std::vector<std::string> legs;
   for (auto& a : m.angles())
@@ -58,7 +58,16 @@ std::set<std::string> value_only_features(const model::OdeModel& m) {
     for (auto& o : legs)
       if (o != l) f.insert("phase_lag." + l + "_to_" + o);
   }
-  if (legs.size() >= 3) f.insert("gait_class");
+  return f;
+}
+
+// Features without a useful gradient (a class: piecewise constant): derivative-free optimisers only.
+std::set<std::string> value_only_features(const model::OdeModel& m) {
+  std::set<std::string> f;
+  size_t legs = 0;
+  for (auto& a : m.angles())
+    if (a.joint == "ctr" && m.parameters().contains(a.leg + ".coupling.beta_thr_pr")) ++legs;
+  if (legs >= 3) f.insert("gait_class");
   return f;
 }
 
@@ -154,6 +163,7 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
 
   // Targets: validate and label residuals.
   std::set<std::string> feats = known_features(model_), values_only = value_only_features(model_);
+  for (auto& n : leg_feature_names(model_)) feats.insert(n);
   for (auto& f : targets_.features) {
     if (values_only.count(f.feature)) {
       if (value_only_feature_.empty()) value_only_feature_ = f.feature;
@@ -214,7 +224,7 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
 }
 
 std::string FitProblem::no_jacobian_reason() const {
-  return "the target feature '" + value_only_feature_ + "' is a per-leg walking feature without gradients";
+  return "the target feature '" + value_only_feature_ + "' is a class without gradients";
 }
 
 std::string FitProblem::parameter_unit(size_t j) const {
@@ -272,7 +282,7 @@ FitProblem::Run FitProblem::run(const double* x, bool with_sens) const {
   }
   solver::Simulator sim(model_, settings_.solver);
   std::vector<solver::RootSpec> roots;
-  if (!targets_.features.empty()) roots = features::feature_roots(model_);
+  if (!targets_.features.empty()) roots = features::feature_roots(model_, R.p);
   R.res = sim.run(R.p, times, roots, with_sens ? sens_params_ : std::vector<size_t>{});
   if (R.res.t.size() != times.size()) throw SolverError("internal: simulation returned too few outputs");
   return R;
@@ -415,7 +425,7 @@ bool FitProblem::jacobian_fd(const double* x, double* J, double h, std::string* 
 solver::SolveResult FitProblem::simulate(const double* x, double dt_ms) const {
   std::vector<double> p = model_parameters(x);
   solver::Simulator sim(model_, settings_.solver);
-  return sim.run(p, solver::output_grid(horizon_ms(x), dt_ms), features::feature_roots(model_));
+  return sim.run(p, solver::output_grid(horizon_ms(x), dt_ms), features::feature_roots(model_, p));
 }
 
 std::vector<FitProblem::KinematicComparison> FitProblem::kinematic_comparison(const double* x) const {

@@ -59,8 +59,8 @@ class FitProblem : public ResidualProblem {
   };
   std::vector<KinematicComparison> kinematic_comparison(const double* x) const;
 
-  // False when a target is a value-only feature (the walking models' per-leg features, e.g.
-  // `middle.step_period_ms`): then only derivative-free optimisers apply.
+  // False when a target is a value-only feature (`gait_class`): then only derivative-free
+  // optimisers apply.
   bool has_jacobian() const override { return value_only_feature_.empty(); }
   std::string no_jacobian_reason() const override;
 

@@ -44,14 +44,16 @@ struct FdColumn {
 };
 
 FdColumn fd_column(const solver::Simulator& sim, const std::vector<double>& p, size_t k, const std::vector<double>& grid,
-                   const std::vector<solver::RootSpec>& roots, const model::OdeModel& model,
+                   const model::OdeModel& model,
                    const features::FeatureOptions& fopt, const std::vector<features::Feature>& nominal,
                    const SensitivityOptions& opt, long& runs) {
   const double h = opt.fd_relative_step * std::max(std::abs(p[k]), opt.fd_min_scale);
   std::vector<double> pp = p, pm = p;
   pp[k] += h;
   pm[k] -= h;
-  solver::SolveResult rp = sim.run(pp, grid, roots), rm = sim.run(pm, grid, roots);
+  // Crossing levels that are parameters (contact threshold, CPG activity level) move too.
+  solver::SolveResult rp = sim.run(pp, grid, features::feature_roots(model, pp)),
+                      rm = sim.run(pm, grid, features::feature_roots(model, pm));
   runs += 2;
   auto fp = features::compute_features(model, rp, fopt), fm = features::compute_features(model, rm, fopt);
   auto find = [](const std::vector<features::Feature>& fs, const std::string& name) {
@@ -93,7 +95,7 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
   }
 
   const std::vector<double> grid = solver::output_grid(opt.t_end_ms, opt.output_dt_ms);
-  const std::vector<solver::RootSpec> roots = features::feature_roots(model);
+  const std::vector<solver::RootSpec> roots = features::feature_roots(model, p);
   features::FeatureOptions fopt = opt.feature_options;
   fopt.discard_ms = opt.discard_ms;
   fopt.root_offset = 0;
@@ -137,7 +139,7 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
             rep.trajectory[(k * n + i) * np + fwd_cols[c]] = nominal.sens(k, i, c);
   }
   for (size_t j : fd_cols) {
-    FdColumn col = fd_column(sim, p, idx[j], grid, roots, model, fopt, rep.features, opt, rep.fd_runs);
+    FdColumn col = fd_column(sim, p, idx[j], grid, model, fopt, rep.features, opt, rep.fd_runs);
     for (size_t f = 0; f < nf; ++f) rep.absolute(f, j) = col.dfeature[f];
     if (opt.write_trajectory) {
       if (col.dy.size() != nt * n) throw Error("internal: finite-difference trajectory has a different length");

@@ -71,7 +71,7 @@ PointResult evaluate_point(const model::OdeModel& model, const std::vector<doubl
     solver::Simulator sim(model, solver_options);
     // Features come from located events, so two output times suffice; CVODES steps the same
     // way whatever the output grid (it interpolates to output times in CV_NORMAL mode).
-    solver::SolveResult res = sim.run(p, {0.0, spec.t_end_ms}, features::feature_roots(model));
+    solver::SolveResult res = sim.run(p, {0.0, spec.t_end_ms}, features::feature_roots(model, p));
     features::FeatureOptions fo;
     fo.discard_ms = spec.discard_ms;
     r.features = features::compute_features(model, res, fo);

@@ -192,16 +192,20 @@ TEST(FitConfig, EveryExampleFitConfigBuildsItsProblem) {
   auto spec = fit::load_fit_spec(cfg, *m);
   fit::FitProblem p(*m, spec.parameters, spec.targets, spec.problem);
   EXPECT_EQ(p.tied_parameters(0).size(), 3u);
-  // Its step-period target is a value-only walking feature: derivative-free optimisers only.
-  EXPECT_FALSE(p.has_jacobian());
-  EXPECT_NE(p.no_jacobian_reason().find("middle.step_period_ms"), std::string::npos);
+  // Its per-leg step-period target has event-time gradients: any optimiser applies.
+  EXPECT_TRUE(p.has_jacobian());
+  // A gait-class target (a class, no gradient) leaves derivative-free optimisers only.
+  fit::FeatureTarget gait = spec.targets.features[0];
+  gait.feature = "gait_class";
+  gait.value = 2;
+  spec.targets.features.push_back(gait);
+  fit::FitProblem q(*m, spec.parameters, spec.targets, spec.problem);
+  EXPECT_FALSE(q.has_jacobian());
+  EXPECT_NE(q.no_jacobian_reason().find("gait_class"), std::string::npos);
   fit::OptimizerOptions ceres, bobyqa;
   fit::parse_optimizer("ceres", ceres);
   fit::parse_optimizer("nlopt:BOBYQA", bobyqa);
-  EXPECT_THROW(fit::check_optimizer(p, ceres), Error);
-  EXPECT_NO_THROW(fit::check_optimizer(p, bobyqa));
-  // Without value-only targets the same model keeps its exact Jacobian.
-  spec.targets.features.erase(spec.targets.features.begin());  // drop middle.step_period_ms
-  fit::FitProblem q(*m, spec.parameters, spec.targets, spec.problem);
-  EXPECT_TRUE(q.has_jacobian());
+  EXPECT_THROW(fit::check_optimizer(q, ceres), Error);
+  EXPECT_NO_THROW(fit::check_optimizer(q, bobyqa));
+  EXPECT_NO_THROW(fit::check_optimizer(p, ceres));
 }
