@@ -15,6 +15,9 @@ enum class LinearSolverKind { Auto, Dense, Band, Klu };
 constexpr size_t kDenseMaxStates = 40;
 enum class JacobianKind { AutoDiff, FiniteDifference };
 enum class SensitivityMethod { Staggered, Simultaneous };
+// Sensitivity right-hand sides J s_j + df/dp_j: all parameters at once in Jet<8> chunks (one
+// model evaluation per 8 parameters) or one Jet<1> evaluation per parameter.
+enum class SensitivityRhs { Batched, PerParameter };
 // BDF + Newton (stiff) or Adams-Moulton + fixed-point iteration (non-stiff: no Jacobian, no
 // linear solves). Chosen by measurement per model (docs/benchmarks.md).
 enum class IntegratorKind { Bdf, Adams };
@@ -28,7 +31,14 @@ struct SolverOptions {
   LinearSolverKind linear_solver = LinearSolverKind::Auto;
   JacobianKind jacobian = JacobianKind::AutoDiff;
   SensitivityMethod sensitivity_method = SensitivityMethod::Staggered;
+  SensitivityRhs sensitivity_rhs = SensitivityRhs::Batched;
   bool sensitivity_error_control = true;
+  // Sensitivity tolerances: rtolS = factor * rtol, atolS_j = factor * atol / pbar_j with
+  // pbar_j = |p_j| (factor 1 = CVodeSensEEtolerances). Only with error control on.
+  double sensitivity_tolerance_factor = 1.0;
+  // Copy the sensitivities at every output time into SolveResult::s (off: only at events,
+  // which is all the features need; saves CVodeGetSens and memory on a fine output grid).
+  bool sensitivities_at_outputs = true;
   bool progress = false;             // progress line on a terminal (stderr)
   std::string progress_label = "simulate";
 };
