@@ -274,7 +274,8 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   bool band = options_.linear_solver == LinearSolverKind::Band && bw >= 0;
   // KLU needs an exact Jacobian function (a difference quotient is only available for dense/band).
   const bool want_klu = options_.linear_solver == LinearSolverKind::Klu ||
-                        (options_.linear_solver == LinearSolverKind::Auto && n > kDenseMaxStates);
+                        (options_.linear_solver == LinearSolverKind::Auto &&
+                         n > (ns > 0 ? kDenseMaxStatesWithSensitivities : kDenseMaxStates));
   const bool klu = want_klu && options_.jacobian == JacobianKind::AutoDiff;
   if (adams) {
     h.NLS = SUNNonlinSol_FixedPoint(h.y, 0, h.ctx);

@@ -13,6 +13,10 @@ namespace phasmid::solver {
 // 20.7 s (KLU) for 9 s of one leg (78 states); equal step counts (docs/benchmarks.md).
 enum class LinearSolverKind { Auto, Dense, Band, Klu };
 constexpr size_t kDenseMaxStates = 40;
+// With forward sensitivities every corrector iteration solves one linear system per parameter
+// (dense back-substitution was 27 % of the profile for the 26-state network), so KLU pays off
+// earlier: 26-state network, 4 parameters, 1.5 s: 5.7 CPU s dense vs 4.1 s KLU (docs/benchmarks.md).
+constexpr size_t kDenseMaxStatesWithSensitivities = 16;
 enum class JacobianKind { AutoDiff, FiniteDifference };
 enum class SensitivityMethod { Staggered, Simultaneous };
 // Sensitivity right-hand sides J s_j + df/dp_j: all parameters at once in Jet<8> chunks (one
