@@ -2,7 +2,7 @@
 // Np = 1, 4, 16 parameters and several ways of running them (variants()), against one-sided
 // finite differences (1 + Np runs) measured in the same run; then the accuracy of each
 // variant's feature sensitivities for the network.
-//   build/bench/bench_sensitivity [t_end_ms [t_network_ms [mech,vdp,net,accuracy]]]
+//   build/bench/bench_sensitivity [t_end_ms [t_network_ms [mech,vdp,net,accuracy [variant,...]]]]
 // Three models: the Section 3.1 mechanical FTi joint (2 states, 18 parameters), a chain of
 // 13 van der Pol oscillators (26 states, 16 parameters) and the single-joint FTi network
 // (configs/single_joint_fti.toml, 26 states, spiking motoneurons; default 2500 ms).
@@ -84,6 +84,8 @@ double seconds(const std::function<void()>& f, int repeats) {
   return best;
 }
 
+std::string g_only;  // comma-separated variant labels to run (empty: all)
+
 // One way of running the sensitivities (columns of the table).
 struct Variant {
   const char* label;
@@ -91,25 +93,33 @@ struct Variant {
 };
 
 std::vector<Variant> variants() {
-  std::vector<Variant> v;
-  solver::SolverOptions o;  // the defaults: staggered, batched Jet<8> right-hand side, errcon, EE tolerances
+  solver::SolverOptions o;  // the defaults: simultaneous, batched Jet<8> right-hand side, errcon, EE tolerances
   o.sensitivities_at_outputs = false;  // as analyse_sensitivities without trajectory output
-  v.push_back({"default", o});
-  solver::SolverOptions per = o;
-  per.sensitivity_rhs = solver::SensitivityRhs::PerParameter;
-  v.push_back({"per-par", per});
-  solver::SolverOptions sim = o;
-  sim.sensitivity_method = solver::SensitivityMethod::Simultaneous;
-  v.push_back({"simult.", sim});
-  solver::SolverOptions loose = o;
-  loose.sensitivity_tolerance_factor = 10.0;
-  v.push_back({"tolS x10", loose});
-  solver::SolverOptions noerr = o;
-  noerr.sensitivity_error_control = false;
-  v.push_back({"no-errcon", noerr});
-  solver::SolverOptions traj = o;
-  traj.sensitivities_at_outputs = true;
-  v.push_back({"+traj", traj});
+  std::vector<Variant> v{{"default", o}};
+  auto add = [&](const char* label, const std::function<void(solver::SolverOptions&)>& change) {
+    solver::SolverOptions x = o;
+    change(x);
+    v.push_back({label, x});
+  };
+  add("old", [](auto& x) {  // the defaults before this benchmark's measurements (docs/benchmarks.md)
+    x.sensitivity_rhs = solver::SensitivityRhs::PerParameter;
+    x.sensitivity_method = solver::SensitivityMethod::Staggered;
+    x.linear_solver = solver::LinearSolverKind::Dense;
+    x.sensitivities_at_outputs = true;
+  });
+  add("per-par", [](auto& x) { x.sensitivity_rhs = solver::SensitivityRhs::PerParameter; });
+  add("stagg.", [](auto& x) { x.sensitivity_method = solver::SensitivityMethod::Staggered; });
+  add("tolS x10", [](auto& x) { x.sensitivity_tolerance_factor = 10.0; });
+  add("no-errcon", [](auto& x) { x.sensitivity_error_control = false; });
+  add("klu", [](auto& x) { x.linear_solver = solver::LinearSolverKind::Klu; });
+  add("dense", [](auto& x) { x.linear_solver = solver::LinearSolverKind::Dense; });
+  add("+traj", [](auto& x) { x.sensitivities_at_outputs = true; });
+  if (!g_only.empty()) {  // keep the default (the reference for 'steps x') and the chosen ones
+    std::vector<Variant> kept{v[0]};
+    for (size_t k = 1; k < v.size(); ++k)
+      if (("," + g_only + ",").find("," + std::string(v[k].label) + ",") != std::string::npos) kept.push_back(v[k]);
+    v = kept;
+  }
   return v;
 }
 
@@ -209,6 +219,7 @@ int main(int argc, char** argv) {
   const double t_end = argc > 1 ? std::atof(argv[1]) : 9000.0;
   const double t_net = argc > 2 ? std::atof(argv[2]) : 2500.0;
   const std::string parts = argc > 3 ? argv[3] : "mech,vdp,net,accuracy";
+  g_only = argc > 4 ? argv[4] : "";
   auto want = [&](const char* part) { return parts.find(part) != std::string::npos; };
   std::printf("bench_sensitivity: cost of forward sensitivities relative to a plain run (same roots, rtol = atol = 1e-8;\n"
               "CPU time of this process)\n");
@@ -226,7 +237,7 @@ int main(int argc, char** argv) {
                                                "middle.fti.k_F.flexion", "middle.fti.k_E.extension"};
   if (want("net")) bench("single-joint FTi network (configs/single_joint_fti.toml)", *net, t_net, 1, net_params);
   if (want("accuracy")) accuracy("single-joint FTi network", *net, t_net, 1000.0, net_params);
-  std::printf("\nColumns: run time / plain run time (default = staggered, batched Jet<8> sensitivity right-hand side,\n"
+  std::printf("\nColumns: run time / plain run time (default = simultaneous corrector, batched Jet<8> sensitivity right-hand side,\n"
               "sensitivity error control with EE tolerances, sensitivities fetched at events only); 'steps x' = CVODES\n"
               "steps of the default / plain steps.\n");
   return 0;

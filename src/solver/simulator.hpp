@@ -34,7 +34,9 @@ struct SolverOptions {
   IntegratorKind integrator = IntegratorKind::Bdf;
   LinearSolverKind linear_solver = LinearSolverKind::Auto;
   JacobianKind jacobian = JacobianKind::AutoDiff;
-  SensitivityMethod sensitivity_method = SensitivityMethod::Staggered;
+  // Simultaneous: same cost as staggered on the 26-state network, 4x more accurate feature
+  // sensitivities (bench_sensitivity accuracy table, docs/benchmarks.md).
+  SensitivityMethod sensitivity_method = SensitivityMethod::Simultaneous;
   SensitivityRhs sensitivity_rhs = SensitivityRhs::Batched;
   bool sensitivity_error_control = true;
   // Sensitivity tolerances: rtolS = factor * rtol, atolS_j = factor * atol / pbar_j with
