@@ -30,7 +30,6 @@ TEST(LegFloquet, MiddleLegMonodromyHasOneTrivialMultiplier) {
   // Without sensitivity error control: 34 000 instead of 92 000 steps (half the CPU time);
   // the monodromy stays accurate to the flow identity's 4e-4 (6e-6 with it, docs).
   o.solver.sensitivity_error_control = false;
-  o.solver.sensitivity_method = solver::SensitivityMethod::Staggered;  // as measured (docs)
   const auto p = m->parameters().values();
   auto r = sensitivity::floquet_analysis(*m, p, o);
   std::printf("period %.3f ms, closure %.3g, trivial multiplier error %.3g, flow identity %.3g, %ld steps\n",
