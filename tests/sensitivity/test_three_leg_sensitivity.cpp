@@ -11,7 +11,7 @@
 
 using namespace phasmid;
 
-TEST(ThreeLegSensitivity, ExampleConfigRunsAndAgreesWithFiniteDifferences) {
+TEST(ThreeLegSensitivity, ExampleConfigRunsWithForwardGradientsForEveryJoint) {
   auto cfg = config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/sensitivity_three_legs.toml");
   auto m = config::build_model(cfg);
   const config::SimulationSettings sim = config::simulation_settings(cfg);
