@@ -1,19 +1,25 @@
 // Cost of forward sensitivities: (time with sensitivities) / (plain simulation) for
-// Np = 1, 4, 16 parameters, staggered vs simultaneous corrector, against finite differences
-// (1 + Np one-sided runs, 1 + 2 Np central runs) measured in the same run.
-//   build-sens/bench/bench_sensitivity [t_end_ms]
-// Two models: the Section 3.1 mechanical FTi joint (2 states, 18 parameters) and a chain of
-// 13 van der Pol oscillators (26 states like the single-joint network, 16 parameters).
+// Np = 1, 4, 16 parameters and several ways of running them (variants()), against one-sided
+// finite differences (1 + Np runs) measured in the same run; then the accuracy of each
+// variant's feature sensitivities for the network.
+//   build/bench/bench_sensitivity [t_end_ms [t_network_ms [mech,vdp,net,accuracy [variant,...]]]]
+// Three models: the Section 3.1 mechanical FTi joint (2 states, 18 parameters), a chain of
+// 13 van der Pol oscillators (26 states, 16 parameters) and the single-joint FTi network
+// (configs/single_joint_fti.toml, 26 states, spiking motoneurons; default 2500 ms).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <functional>
 #include <numeric>
+#include <string>
 
+#include "config/config.hpp"
 #include "features/features.hpp"
 #include "model/mechanical_joint_model.hpp"
+#include "sensitivity/sensitivity.hpp"
 #include "solver/simulator.hpp"
 
 using namespace phasmid;
@@ -60,62 +66,149 @@ class VdpChain : public model::OdeModelT<VdpChain> {
   size_t w_, k_, a_;
 };
 
+// CPU seconds of this (single-threaded) process: on a shared, loaded machine the wall clock
+// mostly measures the other jobs.
+double cpu_now() {
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
 double seconds(const std::function<void()>& f, int repeats) {
   double best = 1e300;
   for (int r = 0; r < repeats; ++r) {
-    auto t0 = std::chrono::steady_clock::now();
+    const double t0 = cpu_now();
     f();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    best = std::min(best, cpu_now() - t0);
   }
   return best;
 }
 
-void bench(const char* label, const model::OdeModel& m, double t_end, int repeats) {
+std::string g_only;  // comma-separated variant labels to run (empty: all)
+
+// One way of running the sensitivities (columns of the table).
+struct Variant {
+  const char* label;
+  solver::SolverOptions options;
+};
+
+std::vector<Variant> variants() {
+  solver::SolverOptions o;  // the defaults: staggered, batched Jet<8> right-hand side, errcon, EE tolerances
+  o.sensitivities_at_outputs = false;  // as analyse_sensitivities without trajectory output
+  std::vector<Variant> v{{"default", o}};
+  auto add = [&](const char* label, const std::function<void(solver::SolverOptions&)>& change) {
+    solver::SolverOptions x = o;
+    change(x);
+    v.push_back({label, x});
+  };
+  add("old", [](auto& x) {  // the defaults before this benchmark's measurements (docs/benchmarks.md)
+    x.sensitivity_rhs = solver::SensitivityRhs::PerParameter;
+    x.linear_solver = solver::LinearSolverKind::Dense;
+    x.sensitivities_at_outputs = true;
+  });
+  add("per-par", [](auto& x) { x.sensitivity_rhs = solver::SensitivityRhs::PerParameter; });
+  add("simult.", [](auto& x) { x.sensitivity_method = solver::SensitivityMethod::Simultaneous; });
+  add("tolS x10", [](auto& x) { x.sensitivity_tolerance_factor = 10.0; });
+  add("no-errcon", [](auto& x) { x.sensitivity_error_control = false; });
+  add("klu", [](auto& x) { x.linear_solver = solver::LinearSolverKind::Klu; });
+  add("dense", [](auto& x) { x.linear_solver = solver::LinearSolverKind::Dense; });
+  add("+traj", [](auto& x) { x.sensitivities_at_outputs = true; });
+  if (!g_only.empty()) {  // keep the default (the reference for 'steps x') and the chosen ones
+    std::vector<Variant> kept{v[0]};
+    for (size_t k = 1; k < v.size(); ++k)
+      if (("," + g_only + ",").find("," + std::string(v[k].label) + ",") != std::string::npos) kept.push_back(v[k]);
+    v = kept;
+  }
+  return v;
+}
+
+// Parameters for Np sensitivities: the first Np, or `names` (a model's meaningful ones) first.
+std::vector<size_t> pick(const model::OdeModel& m, size_t np, const std::vector<std::string>& names) {
+  std::vector<size_t> idx;
+  for (auto& n : names)
+    if (idx.size() < np) idx.push_back(m.parameters().index(n));
+  const auto p = m.parameters().values();
+  for (size_t k = 0; k < p.size() && idx.size() < np; ++k)
+    if (std::find(idx.begin(), idx.end(), k) == idx.end() && p[k] != 0.0) idx.push_back(k);
+  return idx;
+}
+
+void bench(const char* label, const model::OdeModel& m, double t_end, int repeats,
+           const std::vector<std::string>& names = {}) {
   auto p = m.parameters().values();
   const auto grid = solver::output_grid(t_end, 1.0);
   const auto roots = features::feature_roots(m);
-  solver::SolverOptions stag, simul, noerr;
-  simul.sensitivity_method = solver::SensitivityMethod::Simultaneous;
-  noerr.sensitivity_error_control = false;
-  solver::Simulator sim_stag(m, stag), sim_simul(m, simul), sim_noerr(m, noerr);
+  const auto vs = variants();
+  solver::Simulator plain_sim(m, vs[0].options);
   solver::SolveResult r0;
-  const double plain = seconds([&] { r0 = sim_stag.run(p, grid, roots); }, repeats);
-  std::printf("\n%s: %zu states, %zu parameters, %.0f ms simulated, plain run %.4f s (best of %d), %ld steps\n",
+  const double plain = seconds([&] { r0 = plain_sim.run(p, grid, roots); }, repeats);
+  std::printf("\n%s: %zu states, %zu parameters, %.0f ms simulated, plain run %.4f CPU s (best of %d), %ld steps\n",
               label, m.num_states(), p.size(), t_end, plain, repeats, r0.stats.steps);
-  std::printf("%4s  %10s  %10s  %10s  %8s  %8s  %10s  %10s  %10s\n", "Np", "staggered", "simultan.", "no-errcon",
-              "1+0.3Np", "1+0.5Np", "FD 1+Np", "FD 1+2Np", "steps x");
+  std::printf("%4s", "Np");
+  for (auto& v : vs) std::printf("  %9s", v.label);
+  std::printf("  %7s  %7s  %9s  %9s\n", "1+0.3Np", "1+0.5Np", "FD 1+Np", "steps x");
   for (size_t np : {1u, 4u, 16u}) {
-    std::vector<size_t> idx(std::min(np, p.size()));
-    std::iota(idx.begin(), idx.end(), 0);
-    solver::SolveResult rs;
-    const double ts = seconds([&] { rs = sim_stag.run(p, grid, roots, idx); }, repeats);
-    const double tm = seconds([&] { sim_simul.run(p, grid, roots, idx); }, repeats);
-    const double tn = seconds([&] { sim_noerr.run(p, grid, roots, idx); }, repeats);
-    // Finite differences: nominal + one (one-sided) or two (central) runs per parameter.
+    std::vector<size_t> idx = pick(m, np, names);
+    std::printf("%4zu", idx.size());
+    long steps = 0;
+    for (auto& v : vs) {
+      solver::Simulator sim(m, v.options);
+      solver::SolveResult rs;
+      std::printf("  %9.2f", seconds([&] { rs = sim.run(p, grid, roots, idx); }, repeats) / plain);
+      std::fflush(stdout);
+      if (&v == &vs[0]) steps = rs.stats.steps;
+    }
+    // Finite differences: nominal + one (one-sided) run per parameter.
     const double fd1 = seconds(
         [&] {
-          sim_stag.run(p, grid, roots);
+          plain_sim.run(p, grid, roots);
           for (size_t j : idx) {
             auto q = p;
             q[j] *= 1 + 1e-4;
-            sim_stag.run(q, grid, roots);
+            plain_sim.run(q, grid, roots);
           }
         },
         1);
-    const double fd2 = seconds(
-        [&] {
-          sim_stag.run(p, grid, roots);
-          for (size_t j : idx)
-            for (double s : {1.0, -1.0}) {
-              auto q = p;
-              q[j] *= 1 + s * 1e-4;
-              sim_stag.run(q, grid, roots);
-            }
-        },
-        1);
-    std::printf("%4zu  %10.2f  %10.2f  %10.2f  %8.1f  %8.1f  %10.2f  %10.2f  %10.2f\n", idx.size(), ts / plain,
-                tm / plain, tn / plain, 1 + 0.3 * idx.size(), 1 + 0.5 * idx.size(), fd1 / plain, fd2 / plain,
-                double(rs.stats.steps) / r0.stats.steps);
+    std::printf("  %7.1f  %7.1f  %9.2f  %9.2f\n", 1 + 0.3 * idx.size(), 1 + 0.5 * idx.size(), fd1 / plain,
+                double(steps) / r0.stats.steps);
+  }
+}
+
+// Accuracy of each variant: feature sensitivities against a reference (forward, errcon on,
+// rtol = atol = 1e-10; tests/sensitivity/test_network_sensitivity.cpp checks that reference
+// against central differences), as the largest relative deviation over the features whose
+// relative sensitivity exceeds 0.01.
+void accuracy(const char* label, const model::OdeModel& m, double t_end, double discard,
+              const std::vector<std::string>& names) {
+  auto p = m.parameters().values();
+  sensitivity::SensitivityOptions o;
+  o.parameters = names;
+  o.t_end_ms = t_end;
+  o.discard_ms = discard;
+  o.write_trajectory = false;
+  o.solver.rtol = o.solver.atol = 1e-10;
+  auto ref = sensitivity::analyse_sensitivities(m, p, o);
+  std::printf("\naccuracy, %s, Np = %zu, %.0f ms (features after %.0f ms): max |dF/dp - ref| / |ref| over %s\n", label,
+              names.size(), t_end, discard, "features with |relative| > 0.01");
+  std::printf("%10s  %9s  %9s  %s\n", "variant", "max dev", "CPU s", "worst feature / parameter");
+  for (auto& v : variants()) {
+    o.solver = v.options;
+    sensitivity::SensitivityReport r;
+    const double cpu = seconds([&] { r = sensitivity::analyse_sensitivities(m, p, o); }, 1);
+    double worst = 0;
+    std::string where = "-";
+    for (size_t f = 0; f < ref.features.size(); ++f)
+      for (size_t j = 0; j < names.size(); ++j) {
+        if (!(std::abs(ref.relative(f, j)) > 0.01)) continue;
+        const size_t g = r.feature_index(ref.features[f].name);
+        const double dev = std::abs(r.absolute(g, j) - ref.absolute(f, j)) / std::abs(ref.absolute(f, j));
+        if (dev > worst) {
+          worst = dev;
+          where = ref.features[f].name + " / " + names[j];
+        }
+      }
+    std::printf("%10s  %9.2e  %9.2f  %s\n", v.label, worst, cpu, where.c_str());
+    std::fflush(stdout);
   }
 }
 
@@ -123,11 +216,28 @@ void bench(const char* label, const model::OdeModel& m, double t_end, int repeat
 
 int main(int argc, char** argv) {
   const double t_end = argc > 1 ? std::atof(argv[1]) : 9000.0;
-  std::printf("bench_sensitivity: cost of forward sensitivities relative to a plain run (same roots, rtol = atol = 1e-8)\n");
-  model::MechanicalJointModel fti("middle", model::JointType::Fti, true, 250, 500, 45);
-  bench("mechanical FTi joint (Section 3.1)", fti, t_end, 5);
-  VdpChain chain(13);
-  bench("van der Pol chain (26 states)", chain, t_end, 3);
-  std::printf("\nColumns: run time / plain run time; 'steps x' = CVODES steps with staggered sensitivities / plain steps.\n");
+  const double t_net = argc > 2 ? std::atof(argv[2]) : 2500.0;
+  const std::string parts = argc > 3 ? argv[3] : "mech,vdp,net,accuracy";
+  g_only = argc > 4 ? argv[4] : "";
+  auto want = [&](const char* part) { return parts.find(part) != std::string::npos; };
+  std::printf("bench_sensitivity: cost of forward sensitivities relative to a plain run (same roots, rtol = atol = 1e-8;\n"
+              "CPU time of this process)\n");
+  if (want("mech")) {
+    model::MechanicalJointModel fti("middle", model::JointType::Fti, true, 250, 500, 45);
+    bench("mechanical FTi joint (Section 3.1)", fti, t_end, 5);
+  }
+  if (want("vdp")) {
+    VdpChain chain(13);
+    bench("van der Pol chain (26 states)", chain, t_end, 3);
+  }
+  auto cfg = config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/single_joint_fti.toml");
+  auto net = config::build_model(cfg);
+  const std::vector<std::string> net_params = {"middle.fti.cpg_flx.g_app", "middle.fti.cpg_ext.g_app",
+                                               "middle.fti.k_F.flexion", "middle.fti.k_E.extension"};
+  if (want("net")) bench("single-joint FTi network (configs/single_joint_fti.toml)", *net, t_net, 1, net_params);
+  if (want("accuracy")) accuracy("single-joint FTi network", *net, t_net, 1000.0, net_params);
+  std::printf("\nColumns: run time / plain run time (default = staggered corrector, batched Jet<8> sensitivity right-hand side,\n"
+              "sensitivity error control with EE tolerances, sensitivities fetched at events only); 'steps x' = CVODES\n"
+              "steps of the default / plain steps.\n");
   return 0;
 }

@@ -387,7 +387,7 @@ std::vector<DualFeature> leg_features(const model::OdeModel& model, const solver
 std::vector<DualFeature> compute(const model::OdeModel& model, const solver::SolveResult& res,
                                  const FeatureOptions& opt, bool with_grad) {
   const size_t ns = with_grad ? res.sens_params.size() : 0;
-  if (with_grad && (ns == 0 || res.s.empty()))
+  if (with_grad && ns == 0)
     throw Error("feature gradients need a run with sensitivities");
   std::vector<solver::RootSpec> roots = feature_roots(model);
   std::vector<DualFeature> out;

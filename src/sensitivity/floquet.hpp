@@ -78,11 +78,18 @@ struct FloquetResult {
   // For an autonomous limit cycle one multiplier is 1 (perturbation along the orbit); this is
   // the distance of the multiplier closest to 1 from 1.
   double trivial_multiplier_error = 0.0;
+  // Accuracy of Phi itself, independent of how periodic the orbit is: for an autonomous system
+  // Phi(T) f(y(t0)) = f(y(t0 + T)) exactly; this is |Phi f0 - f1| / |f1| (Euclidean norms).
+  double flow_identity_error = 0.0;
+  double seconds = 0.0;        // wall time of the monodromy run (sensitivities w.r.t. all states)
+  solver::SolverStats monodromy_stats;
 };
 
-// Monodromy matrix over one period along `orbit`, by forward sensitivities.
+// Monodromy matrix over one period along `orbit`, by forward sensitivities; `y_end` (if
+// given) receives the state after one period and `stats` the solver statistics.
 Eigen::MatrixXd monodromy_matrix(const model::OdeModel& model, const std::vector<double>& p, const PeriodicOrbit& orbit,
-                                 const solver::SolverOptions& solver_options);
+                                 const solver::SolverOptions& solver_options, std::vector<double>* y_end = nullptr,
+                                 solver::SolverStats* stats = nullptr);
 
 FloquetResult floquet_analysis(const model::OdeModel& model, const std::vector<double>& p,
                                const FloquetOptions& options = {});

@@ -99,7 +99,9 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
   features::FeatureOptions fopt = opt.feature_options;
   fopt.discard_ms = opt.discard_ms;
   fopt.root_offset = 0;
-  solver::Simulator sim(model, opt.solver);
+  solver::SolverOptions sopt = opt.solver;
+  sopt.sensitivities_at_outputs = opt.write_trajectory;  // the features need them at events only
+  solver::Simulator sim(model, sopt);
 
   // Columns done by forward sensitivities, the rest by finite differences.
   std::vector<size_t> fwd_cols, fd_cols;
@@ -128,10 +130,13 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
   if (opt.write_trajectory) rep.trajectory.assign(nt * n * np, 0.0);
 
   if (!fwd_cols.empty()) {
+    // Features without a forward gradient (the walking models' contact-based leg features,
+    // docs/walking_model.md) keep NaN; --method fd gives them.
     auto grads = features::compute_feature_gradients(model, nominal, fopt);
-    if (grads.size() != nf) throw Error("internal: feature gradients do not match the features");
-    for (size_t f = 0; f < nf; ++f)
-      for (size_t c = 0; c < fwd_cols.size(); ++c) rep.absolute(f, fwd_cols[c]) = grads[f].gradient[c];
+    for (const auto& g : grads) {
+      const size_t f = rep.feature_index(g.feature.name);
+      for (size_t c = 0; c < fwd_cols.size(); ++c) rep.absolute(f, fwd_cols[c]) = g.gradient[c];
+    }
     if (opt.write_trajectory)
       for (size_t k = 0; k < nt; ++k)
         for (size_t i = 0; i < n; ++i)

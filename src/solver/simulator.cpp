@@ -177,6 +177,31 @@ int sens_rhs_cb(int, sunrealtype t, N_Vector y, N_Vector, int is, N_Vector yS, N
   return 0;
 }
 
+// All sensitivity right-hand sides at once: chunks of kJacobianChunk parameters share one
+// Jet<kJacobianChunk> evaluation (lane k carries s_{c0+k} and the unit seed of p_{c0+k}).
+int sens_rhs_batched_cb(int ns, sunrealtype t, N_Vector y, N_Vector, N_Vector* yS, N_Vector* ySdot, void* ud,
+                        N_Vector, N_Vector) {
+  auto* d = static_cast<CallbackData*>(ud);
+  const double* yv = N_VGetArrayPointer(y);
+  for (int c0 = 0; c0 < ns; c0 += kJacobianChunk) {
+    const int m = std::min(kJacobianChunk, ns - c0);
+    for (size_t i = 0; i < d->n; ++i) d->yK[i] = JetK(yv[i]);
+    for (int k = 0; k < m; ++k) {
+      const double* sv = N_VGetArrayPointer(yS[c0 + k]);
+      for (size_t i = 0; i < d->n; ++i) d->yK[i].v[k] = sv[i];
+      d->pK[d->sens_params[c0 + k]].v[k] = 1.0;
+    }
+    d->model->rhs(t, d->yK.data(), d->pK.data(), d->fK.data());
+    for (int k = 0; k < m; ++k) {
+      d->pK[d->sens_params[c0 + k]].v[k] = 0.0;
+      double* out = N_VGetArrayPointer(ySdot[c0 + k]);
+      for (size_t i = 0; i < d->n; ++i) out[i] = d->fK[i].v[k];
+    }
+    d->sens_evals += m;
+  }
+  return 0;
+}
+
 int root_cb(sunrealtype, N_Vector y, sunrealtype* g, void* ud) {
   auto* d = static_cast<CallbackData*>(ud);
   const auto& roots = *d->roots;
@@ -300,7 +325,8 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   bool band = options_.linear_solver == LinearSolverKind::Band && bw >= 0;
   // KLU needs an exact Jacobian function (a difference quotient is only available for dense/band).
   const bool want_klu = options_.linear_solver == LinearSolverKind::Klu ||
-                        (options_.linear_solver == LinearSolverKind::Auto && n > kDenseMaxStates);
+                        (options_.linear_solver == LinearSolverKind::Auto &&
+                         n > (ns > 0 ? kDenseMaxStatesWithSensitivities : kDenseMaxStates));
   const bool klu = want_klu && options_.jacobian == JacobianKind::AutoDiff;
   if (adams) {
     h.NLS = SUNNonlinSol_FixedPoint(h.y, 0, h.ctx);
@@ -335,7 +361,10 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
       for (size_t i = 0; i < n; ++i) NV_Ith_S(h.yS[j], i) = (yp[i] - ym[i]) / (2 * hstep);
     }
     int method = options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS;
-    check_flag(CVodeSensInit1(h.mem, h.ns, method, sens_rhs_cb, h.yS), "CVodeSensInit1");
+    if (options_.sensitivity_rhs == SensitivityRhs::Batched && ns > 1)
+      check_flag(CVodeSensInit(h.mem, h.ns, method, sens_rhs_batched_cb, h.yS), "CVodeSensInit");
+    else
+      check_flag(CVodeSensInit1(h.mem, h.ns, method, sens_rhs_cb, h.yS), "CVodeSensInit1");
     if (adams) {
       h.NLS_sens = method == CV_STAGGERED ? SUNNonlinSol_FixedPointSens(h.ns + 1, h.y, 0, h.ctx)
                                           : SUNNonlinSol_FixedPointSens(h.ns + 1, h.y, 0, h.ctx);
@@ -345,7 +374,14 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
     std::vector<double> pbar(ns);
     for (size_t j = 0; j < ns; ++j) pbar[j] = std::abs(p[sens_params[j]]) > 0 ? std::abs(p[sens_params[j]]) : 1.0;
     check_flag(CVodeSetSensParams(h.mem, nullptr, pbar.data(), nullptr), "CVodeSetSensParams");
-    check_flag(CVodeSensEEtolerances(h.mem), "CVodeSensEEtolerances");
+    if (options_.sensitivity_tolerance_factor == 1.0) {
+      check_flag(CVodeSensEEtolerances(h.mem), "CVodeSensEEtolerances");
+    } else {
+      const double f = options_.sensitivity_tolerance_factor;
+      std::vector<double> atolS(ns);
+      for (size_t j = 0; j < ns; ++j) atolS[j] = f * options_.atol / pbar[j];
+      check_flag(CVodeSensSStolerances(h.mem, f * options_.rtol, atolS.data()), "CVodeSensSStolerances");
+    }
     check_flag(CVodeSetSensErrCon(h.mem, options_.sensitivity_error_control ? SUNTRUE : SUNFALSE), "CVodeSetSensErrCon");
   }
   std::vector<int> dirs;
@@ -408,11 +444,13 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
     CVodeGetNumSteps(h.mem, &v);
     return steps_before_restarts + v;
   };
-  auto record_output = [&](double t) {
+  double t_sens = 0.0;
+  auto record_output = [&](double t, bool fetch_sens) {
     res.t.push_back(t);
     res.steps_at_output.push_back(total_steps());
     for (size_t i = 0; i < n; ++i) res.y.push_back(NV_Ith_S(h.y, i));
-    if (ns) {
+    if (ns && options_.sensitivities_at_outputs) {
+      if (fetch_sens) check_flag(CVodeGetSens(h.mem, &t_sens, h.yS), "CVodeGetSens");
       for (size_t i = 0; i < n; ++i)
         for (size_t j = 0; j < ns; ++j) res.s.push_back(NV_Ith_S(h.yS[j], i));
     }
@@ -421,7 +459,7 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   double t = t0;
   size_t k_out = 0;
   if (output_times[0] <= t0) {
-    record_output(t0);
+    record_output(t0, false);
     k_out = 1;
   }
   while (k_out < output_times.size()) {
@@ -433,8 +471,9 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
          << " (try --set on the offending parameter, or tighter tolerances)";
       throw SolverError(os.str());
     }
-    if (ns && (flag == CV_SUCCESS || flag == CV_ROOT_RETURN || flag == CV_TSTOP_RETURN))
-      check_flag(CVodeGetSens(h.mem, &t, h.yS), "CVodeGetSens");
+    // Sensitivities are needed at events, at restarts and (if kept) at output times
+    // (record_output fetches those).
+    if (ns && (flag == CV_ROOT_RETURN || flag == CV_TSTOP_RETURN)) check_flag(CVodeGetSens(h.mem, &t, h.yS), "CVodeGetSens");
     if (flag == CV_ROOT_RETURN) {
       check_flag(CVodeGetRootInfo(h.mem, rootsfound.data()), "CVodeGetRootInfo");
       model_.rhs(t, N_VGetArrayPointer(h.y), p.data(), ydot.data());
@@ -477,7 +516,7 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
       ++res.stats.restarts;
     }
     if (std::abs(t - tout) < 1e-9 * std::max(1.0, std::abs(tout))) {
-      record_output(tout);
+      record_output(tout, flag == CV_SUCCESS);  // events and restarts fetched them already
       ++k_out;
     }
     if (show_progress) {

@@ -13,8 +13,15 @@ namespace phasmid::solver {
 // 20.7 s (KLU) for 9 s of one leg (78 states); equal step counts (docs/benchmarks.md).
 enum class LinearSolverKind { Auto, Dense, Band, Klu };
 constexpr size_t kDenseMaxStates = 40;
+// With forward sensitivities every corrector iteration solves one linear system per parameter
+// (dense back-substitution was 27 % of the profile for the 26-state network), so KLU pays off
+// earlier: 26-state network, 4 parameters, 1.5 s: 5.7 CPU s dense vs 4.1 s KLU (docs/benchmarks.md).
+constexpr size_t kDenseMaxStatesWithSensitivities = 16;
 enum class JacobianKind { AutoDiff, FiniteDifference };
 enum class SensitivityMethod { Staggered, Simultaneous };
+// Sensitivity right-hand sides J s_j + df/dp_j: all parameters at once in Jet<8> chunks (one
+// model evaluation per 8 parameters) or one Jet<1> evaluation per parameter.
+enum class SensitivityRhs { Batched, PerParameter };
 // BDF + Newton (stiff) or Adams-Moulton + fixed-point iteration (non-stiff: no Jacobian, no
 // linear solves). Chosen by measurement per model (docs/benchmarks.md).
 enum class IntegratorKind { Bdf, Adams };
@@ -27,8 +34,19 @@ struct SolverOptions {
   IntegratorKind integrator = IntegratorKind::Bdf;
   LinearSolverKind linear_solver = LinearSolverKind::Auto;
   JacobianKind jacobian = JacobianKind::AutoDiff;
+  // Staggered. Simultaneous costs the same and gave 4x more accurate feature sensitivities
+  // on the 26-state network (`staggered = false` in [sensitivity]), but with it NLopt's LBFGS
+  // stopped with FAILURE on the fit-backend test (gradients of trajectory residuals);
+  // docs/benchmarks.md.
   SensitivityMethod sensitivity_method = SensitivityMethod::Staggered;
+  SensitivityRhs sensitivity_rhs = SensitivityRhs::Batched;
   bool sensitivity_error_control = true;
+  // Sensitivity tolerances: rtolS = factor * rtol, atolS_j = factor * atol / pbar_j with
+  // pbar_j = |p_j| (factor 1 = CVodeSensEEtolerances). Only with error control on.
+  double sensitivity_tolerance_factor = 1.0;
+  // Copy the sensitivities at every output time into SolveResult::s (off: only at events,
+  // which is all the features need; saves CVodeGetSens and memory on a fine output grid).
+  bool sensitivities_at_outputs = true;
   bool progress = false;             // progress line on a terminal (stderr)
   std::string progress_label = "simulate";
 };
@@ -58,7 +76,8 @@ struct SolverStats {
 struct SolveResult {
   std::vector<double> t;    // output times (ms)
   std::vector<double> y;    // n_out x n_states, row-major
-  std::vector<double> s;    // n_out x n_states x n_sens, row-major (empty without sensitivities)
+  std::vector<double> s;    // n_out x n_states x n_sens, row-major (empty without sensitivities
+                            // or with SolverOptions::sensitivities_at_outputs off: see Event::s)
   std::vector<size_t> sens_params;
   std::vector<Event> events;
   std::vector<long> steps_at_output;  // cumulative solver steps at each output time (diagnostics)
