@@ -130,8 +130,8 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
   if (opt.write_trajectory) rep.trajectory.assign(nt * n * np, 0.0);
 
   if (!fwd_cols.empty()) {
-    // Features without a forward gradient (the walking models' contact-based leg features,
-    // docs/walking_model.md) keep NaN; --method fd gives them.
+    // Every feature of compute_features has a forward gradient (gait_class a zero one); a
+    // feature the gradient pass does not produce would keep NaN.
     auto grads = features::compute_feature_gradients(model, nominal, fopt);
     for (const auto& g : grads) {
       const size_t f = rep.feature_index(g.feature.name);

@@ -26,15 +26,18 @@ TEST(ThreeLegSensitivity, ExampleConfigRunsWithForwardGradientsForEveryJoint) {
   auto out = sensitivity::run_sensitivity_job(*m, p, job);
   const auto& fwd = out.report;
 
-  // Every leg's joints have a period and a phase lag (to the first channel) with gradients;
-  // the contact-based leg features are values only (NaN gradients, --method fd gives them).
+  // Every leg's joints have a period and a phase lag (to the first channel) with gradients,
+  // and so do the contact-based leg features (step period, duty factor; the leg-to-leg lags).
   for (const char* leg : {"front", "middle", "hind"})
     for (const char* joint : {"thc", "ctr", "fti"}) {
       const size_t f = fwd.feature_index(std::string(leg) + "." + joint + ".period_ms");
       for (size_t j = 0; j < 4; ++j) EXPECT_TRUE(std::isfinite(fwd.absolute(f, j))) << fwd.features[f].name;
     }
   EXPECT_NO_THROW(fwd.feature_index("middle.thc.phase_lag"));
-  EXPECT_TRUE(std::isnan(fwd.absolute(fwd.feature_index("middle.step_period_ms"), 0)));
+  for (const char* name : {"middle.step_period_ms", "middle.duty_factor", "phase_lag.hind_to_middle"})
+    for (size_t j = 0; j < 4; ++j) EXPECT_TRUE(std::isfinite(fwd.absolute(fwd.feature_index(name), j))) << name;
+  // The LD drive moves the middle leg's step period as it moves its CTr period.
+  EXPECT_LT(fwd.absolute(fwd.feature_index("middle.step_period_ms"), 2), -600);
   EXPECT_NEAR(fwd.features[fwd.feature_index("middle.ctr.period_ms")].value, 443.7, 1.0);
 
   // The largest sensitivity of the middle leg's LD: d period / d levator drive. Central
