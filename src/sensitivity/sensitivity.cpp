@@ -26,15 +26,6 @@ size_t SensitivityReport::feature_index(const std::string& name) const {
 }
 
 namespace {
-std::vector<double> nudged(const std::vector<double>& p, size_t k) {
-  std::vector<double> q = p;
-  q[k] = p[k] + 1e-6 * std::max(std::abs(p[k]), 1e-3);
-  return q;
-}
-}  // namespace
-
-
-namespace {
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
