@@ -12,7 +12,7 @@
 #include <set>
 
 #include "config/config.hpp"
-#include "sensitivity/sensitivity.hpp"
+#include "fd_check.hpp"
 
 using namespace phasmid;
 
@@ -26,14 +26,7 @@ TEST(LegFeatureSensitivity, PerLegFeaturesMatchCentralDifferences) {
   o.discard_ms = 1500;
   o.output_dt_ms = 5;
   o.write_trajectory = false;
-  o.solver.rtol = o.solver.atol = 1e-10;
-  auto fwd = sensitivity::analyse_sensitivities(*m, m->parameters().values(), o);
-  o.method = sensitivity::Method::FiniteDifference;
-  o.fd_relative_step = 3e-5;
-  o.solver.rtol = o.solver.atol = 1e-11;
-  auto fd = sensitivity::analyse_sensitivities(*m, m->parameters().values(), o);
-  o.fd_relative_step = 6e-5;
-  auto fd2 = sensitivity::analyse_sensitivities(*m, m->parameters().values(), o);
+  auto [fwd, fd, fd2] = sensitivity_test::forward_and_fd(*m, o, 1e-10, 1e-11, 3e-5);
   ASSERT_EQ(fwd.features.size(), fd.features.size());
   const std::set<std::string> leg = {"middle.step_period_ms", "middle.stance_ms", "middle.swing_ms",
                                      "middle.duty_factor", "middle.thc.stance_change_deg", "middle.fti.stance_change_deg",

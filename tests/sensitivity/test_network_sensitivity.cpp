@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "config/config.hpp"
-#include "sensitivity/sensitivity.hpp"
+#include "fd_check.hpp"
 
 using namespace phasmid;
 
@@ -19,18 +19,11 @@ TEST(NetworkSensitivity, FeatureSensitivitiesMatchCentralDifferences) {
   o.discard_ms = 1000;
   o.output_dt_ms = 5;
   o.write_trajectory = false;
-  o.solver.rtol = o.solver.atol = 1e-10;
-  auto fwd = sensitivity::analyse_sensitivities(*m, m->parameters().values(), o);
   // Finite differences of event times need a tighter solver tolerance and a small step: at
   // rtol 1e-9 their noise is ~1.5% of d period / d g_app, and steps >= 1e-4 straddle a kink of
   // angle_min (the deepest of two near-equal local minima changes); with 3e-5 at 1e-11 they
   // converge to the forward values (docs/sensitivity.md).
-  o.method = sensitivity::Method::FiniteDifference;
-  o.fd_relative_step = 3e-5;
-  o.solver.rtol = o.solver.atol = 1e-11;
-  auto fd = sensitivity::analyse_sensitivities(*m, m->parameters().values(), o);
-  o.fd_relative_step = 6e-5;
-  auto fd2 = sensitivity::analyse_sensitivities(*m, m->parameters().values(), o);
+  auto [fwd, fd, fd2] = sensitivity_test::forward_and_fd(*m, o, 1e-10, 1e-11, 3e-5);
   ASSERT_EQ(fwd.features.size(), fd.features.size());
   int compared = 0;
   for (size_t f = 0; f < fwd.features.size(); ++f) {

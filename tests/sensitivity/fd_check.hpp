@@ -1,0 +1,29 @@
+#pragma once
+// Shared by the feature-sensitivity tests: forward sensitivities next to central finite
+// differences at two steps (h and 2h), so that a test compares only where the difference
+// quotient is well conditioned (the two steps agree).
+#include "sensitivity/sensitivity.hpp"
+
+namespace phasmid::sensitivity_test {
+
+struct ForwardAndFd {
+  sensitivity::SensitivityReport fwd, fd, fd2;
+};
+
+// Forward at rtol = atol = rtol_forward; central differences at rtol_fd with relative steps h, 2h.
+inline ForwardAndFd forward_and_fd(const model::OdeModel& m, sensitivity::SensitivityOptions o, double rtol_forward,
+                                   double rtol_fd, double h) {
+  ForwardAndFd r;
+  const auto p = m.parameters().values();
+  o.solver.rtol = o.solver.atol = rtol_forward;
+  r.fwd = sensitivity::analyse_sensitivities(m, p, o);
+  o.method = sensitivity::Method::FiniteDifference;
+  o.solver.rtol = o.solver.atol = rtol_fd;
+  o.fd_relative_step = h;
+  r.fd = sensitivity::analyse_sensitivities(m, p, o);
+  o.fd_relative_step = 2 * h;
+  r.fd2 = sensitivity::analyse_sensitivities(m, p, o);
+  return r;
+}
+
+}  // namespace phasmid::sensitivity_test
