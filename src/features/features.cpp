@@ -267,13 +267,14 @@ struct DualFeature {
   std::string unit;
 };
 
+// `roots`: feature_roots(model), whose state indices the event-time formula reads.
 std::vector<DualFeature> leg_features(const model::OdeModel& model, const solver::SolveResult& res,
-                                      const FeatureOptions& opt, bool with_grad) {
+                                      const FeatureOptions& opt, bool with_grad,
+                                      const std::vector<solver::RootSpec>& roots) {
   const size_t ns = with_grad ? res.sens_params.size() : 0;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(ns);
   std::vector<DualFeature> out;
   const std::vector<LegRoot> legs = leg_roots(model);
-  const std::vector<solver::RootSpec> roots = feature_roots(model);
   const size_t first = opt.root_offset + model.angles().size();
   const size_t first_spec = model.angles().size();  // the same roots in feature_roots' own order
   // Roots of the retractor CPGs follow the beta roots, one per leg that has one (feature_roots).
@@ -439,7 +440,7 @@ std::vector<DualFeature> compute(const model::OdeModel& model, const solver::Sol
     if (!a_min.empty()) out.push_back({pre + "angle_min_deg", mean(a_min, ns), "deg"});
     if (!a_max.empty()) out.push_back({pre + "angle_max_deg", mean(a_max, ns), "deg"});
   }
-  for (auto& f : leg_features(model, res, opt, with_grad)) out.push_back(std::move(f));
+  for (auto& f : leg_features(model, res, opt, with_grad, roots)) out.push_back(std::move(f));
   return out;
 }
 

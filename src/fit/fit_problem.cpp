@@ -44,13 +44,19 @@ std::set<std::string> known_features(const model::OdeModel& m) {
   return f;
 }
 
+// The legs of a walking model: those with a ground-contact threshold (features.cpp's criterion).
+std::vector<std::string> walking_legs(const model::OdeModel& m) {
+  std::vector<std::string> legs;
+  for (auto& a : m.angles())
+    if (a.joint == "ctr" && m.parameters().contains(a.leg + ".coupling.beta_thr_pr")) legs.push_back(a.leg);
+  return legs;
+}
+
 // Per-leg features of the walking models (features::compute_features), with event-time
 // gradients like the channel features.
 std::set<std::string> leg_feature_names(const model::OdeModel& m) {
   std::set<std::string> f;
-  std::vector<std::string> legs;
-  for (auto& a : m.angles())
-    if (a.joint == "ctr" && m.parameters().contains(a.leg + ".coupling.beta_thr_pr")) legs.push_back(a.leg);
+  const std::vector<std::string> legs = walking_legs(m);
   for (auto& l : legs) {
     for (const char* s : {"step_period_ms", "stance_ms", "swing_ms", "duty_factor", "thc.stance_change_deg",
                           "fti.stance_change_deg", "protraction_in_stance_fraction", "stance_retraction_fraction"})
@@ -63,12 +69,8 @@ std::set<std::string> leg_feature_names(const model::OdeModel& m) {
 
 // Features without a useful gradient (a class: piecewise constant): derivative-free optimisers only.
 std::set<std::string> value_only_features(const model::OdeModel& m) {
-  std::set<std::string> f;
-  size_t legs = 0;
-  for (auto& a : m.angles())
-    if (a.joint == "ctr" && m.parameters().contains(a.leg + ".coupling.beta_thr_pr")) ++legs;
-  if (legs >= 3) f.insert("gait_class");
-  return f;
+  if (walking_legs(m).size() >= 3) return {"gait_class"};
+  return {};
 }
 
 std::vector<size_t> match_parameters(const model::ParameterSet& ps, const std::string& id, const std::string& w) {
