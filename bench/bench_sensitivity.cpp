@@ -113,6 +113,7 @@ std::vector<Variant> variants() {
   add("klu", [](auto& x) { x.linear_solver = solver::LinearSolverKind::Klu; });
   add("dense", [](auto& x) { x.linear_solver = solver::LinearSolverKind::Dense; });
   add("+traj", [](auto& x) { x.sensitivities_at_outputs = true; });
+  add("sun-nvec", [](auto& x) { x.vector_kernels = solver::VectorKernels::Sundials; });
   if (!g_only.empty()) {  // keep the default (the reference for 'steps x') and the chosen ones
     std::vector<Variant> kept{v[0]};
     for (size_t k = 1; k < v.size(); ++k)
@@ -219,7 +220,7 @@ int main(int argc, char** argv) {
   const double t_net = argc > 2 ? std::atof(argv[2]) : 2500.0;
   const std::string parts = argc > 3 ? argv[3] : "mech,vdp,net,accuracy";
   g_only = argc > 4 ? argv[4] : "";
-  auto want = [&](const char* part) { return parts.find(part) != std::string::npos; };
+  auto want = [&](const char* part) { return ("," + parts + ",").find("," + std::string(part) + ",") != std::string::npos; };
   std::printf("bench_sensitivity: cost of forward sensitivities relative to a plain run (same roots, rtol = atol = 1e-8;\n"
               "CPU time of this process)\n");
   if (want("mech")) {
@@ -236,6 +237,14 @@ int main(int argc, char** argv) {
                                                "middle.fti.k_F.flexion", "middle.fti.k_E.extension"};
   if (want("net")) bench("single-joint FTi network (configs/single_joint_fti.toml)", *net, t_net, 1, net_params);
   if (want("accuracy")) accuracy("single-joint FTi network", *net, t_net, 1000.0, net_params);
+  if (want("rate")) {  // the same network with non-spiking rate motoneurons (docs/model.md)
+    std::string text = cfg.text;
+    const size_t at = text.find("[model]");
+    text.insert(at + 7, "\nmotoneuron = \"rate\"");
+    auto rate = config::build_model(config::parse_config(text, cfg.path + " + motoneuron = \"rate\""));
+    bench("single-joint FTi network, rate motoneurons (motoneuron = \"rate\")", *rate, t_net, 1, net_params);
+    if (want("rate-accuracy")) accuracy("single-joint FTi network, rate motoneurons", *rate, t_net, 1000.0, net_params);
+  }
   std::printf("\nColumns: run time / plain run time (default = staggered corrector, batched Jet<8> sensitivity right-hand side,\n"
               "sensitivity error control with EE tolerances, sensitivities fetched at events only); 'steps x' = CVODES\n"
               "steps of the default / plain steps.\n");

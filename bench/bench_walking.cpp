@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
   const std::string formulations = argc > 4 ? argv[4] : "spiking,rate";
   solver::SolverOptions so;
   so.rtol = so.atol = argc > 5 ? std::atof(argv[5]) : 1e-6;  // default: the three-leg configs' tolerance
+  if (const char* e = std::getenv("BENCH_MAXORD")) so.max_order = std::atoi(e);
+  if (std::getenv("BENCH_STALD")) so.stability_limit_detection = true;
   if (ls == "dense") so.linear_solver = solver::LinearSolverKind::Dense;
   if (ls == "band") so.linear_solver = solver::LinearSolverKind::Band;
   if (ls == "klu") so.linear_solver = solver::LinearSolverKind::Klu;

@@ -21,6 +21,8 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "solver/matrix_kernels.hpp"
+#include "solver/serial_kernels.hpp"
 
 namespace phasmid::solver {
 using model::Jet1;
@@ -308,6 +310,8 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   CvodeHandles h;
   check_flag(SUNContext_Create(nullptr, &h.ctx), "SUNContext_Create");
   h.y = N_VNew_Serial(n, h.ctx);
+  // Clones (CVODES' work vectors, the sensitivity arrays) copy the ops table.
+  if (options_.vector_kernels == VectorKernels::Phasmid) install_serial_kernels(h.y);
   std::vector<double> y0 = model_.initial_state(p);
   for (size_t i = 0; i < n; ++i) NV_Ith_S(h.y, i) = y0[i];
   const bool adams = options_.integrator == IntegratorKind::Adams;
@@ -320,6 +324,8 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   check_flag(CVodeSetMaxNumSteps(h.mem, options_.max_steps), "CVodeSetMaxNumSteps");
   check_flag(CVodeSetErrHandlerFn(h.mem, [](int, const char*, const char*, char*, void*) {}, nullptr), "silence");
   if (options_.max_step_ms > 0) check_flag(CVodeSetMaxStep(h.mem, options_.max_step_ms), "CVodeSetMaxStep");
+  if (options_.max_order > 0) check_flag(CVodeSetMaxOrd(h.mem, options_.max_order), "CVodeSetMaxOrd");
+  if (options_.stability_limit_detection) check_flag(CVodeSetStabLimDet(h.mem, SUNTRUE), "CVodeSetStabLimDet");
 
   int bw = model_.jacobian_half_bandwidth();
   bool band = options_.linear_solver == LinearSolverKind::Band && bw >= 0;
@@ -341,6 +347,10 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   } else {
     h.A = SUNDenseMatrix(n, n, h.ctx);
     h.LS = SUNLinSol_Dense(h.y, h.A, h.ctx);
+  }
+  if (options_.vector_kernels == VectorKernels::Phasmid && h.A) {
+    if (klu) install_sparse_kernels(h.A);
+    else if (!band) install_dense_kernels(h.A, h.LS);
   }
   if (!adams) check_flag(CVodeSetLinearSolver(h.mem, h.LS, h.A), "CVodeSetLinearSolver");
   if (!adams && options_.jacobian == JacobianKind::AutoDiff)

@@ -25,6 +25,7 @@ enum class SensitivityRhs { Batched, PerParameter };
 // BDF + Newton (stiff) or Adams-Moulton + fixed-point iteration (non-stiff: no Jacobian, no
 // linear solves). Chosen by measurement per model (docs/benchmarks.md).
 enum class IntegratorKind { Bdf, Adams };
+enum class VectorKernels { Phasmid, Sundials };
 
 struct SolverOptions {
   double rtol = 1e-8;
@@ -47,6 +48,12 @@ struct SolverOptions {
   // Copy the sensitivities at every output time into SolveResult::s (off: only at events,
   // which is all the features need; saves CVodeGetSens and memory on a fine output grid).
   bool sensitivities_at_outputs = true;
+  // Vector and matrix arithmetic and the dense LU: phasmid's compiled kernels
+  // (solver/serial_kernels.hpp, solver/matrix_kernels.hpp; Debian's libsundials is built
+  // without optimisation) or the library's own (docs/benchmarks.md).
+  VectorKernels vector_kernels = VectorKernels::Phasmid;
+  int max_order = 0;                      // BDF/Adams order limit (0: CVODES default, 5 / 12)
+  bool stability_limit_detection = false; // CVodeSetStabLimDet (BDF orders >= 3)
   bool progress = false;             // progress line on a terminal (stderr)
   std::string progress_label = "simulate";
 };
