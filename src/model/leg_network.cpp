@@ -30,7 +30,7 @@ struct Def {
 SynapseIdx command_inhibition_synapse(Def& def) {
   const std::string cls = "syn.command_inh.";
   const std::string as_a4 = std::string(kChoice) + ": as Table A.4";
-  return {def.once(cls + "g", 5.0, "nS", kChoice, "inhibition by central command neurons (sideward stop, levator hold)", 0),
+  return {def.once(cls + "g", 5.0, "nS", kChoice, "inhibition by central command neurons (sideward stop: SF, SB and the PR MNs; levator hold)", 0),
           def.once(cls + "V_h", -43, "mV", as_a4, "half-activation"),
           def.once(cls + "gamma", -10, "1/mV", as_a4, "slope"),
           def.once(cls + "E", -80, "mV", as_a4, "reversal (inhibitory)")};
@@ -39,6 +39,7 @@ SynapseIdx command_inhibition_synapse(Def& def) {
 Condition below(size_t state, size_t thr, size_t width) { return {Condition::AngleBelow, state, thr, width}; }
 Condition above(size_t state, size_t thr, size_t width) { return {Condition::AngleAbove, state, thr, width}; }
 Condition after(size_t t) { return {Condition::TimeAfter, 0, t, 0}; }
+Condition before(size_t t) { return {Condition::TimeBefore, 0, t, 0}; }
 }  // namespace
 
 LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::string& leg, const LegOptions& o) {
@@ -145,7 +146,7 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
                        "central command: switch to backward stepping (SF off, SB on)", 0);
     size_t t_fwd = def(leg + ".command.forward_ms", kNever, "ms", "Knops 2013, Fig. 3.10 (9250 ms in middle_leg_switch.toml)",
                        "central command: back to forward stepping after backward_ms (SB off, SF on)", 0);
-    size_t t_side = def(leg + ".command.sideward_ms", kNever, "ms", "Knops 2013, Fig. 3.12 (4690 ms in middle_leg_sideward.toml)",
+    size_t t_side = def(leg + ".command.sideward_ms", kNever, "ms", "Knops 2013, Fig. 3.12 (4690 ms there; 4560 ms in middle_leg_sideward.toml, the phase that gives 102 deg here: docs/walking_model.md)",
                         "central command: sideward stepping (SF and SB inhibited, FE drives changed)", 0);
     m.add_modulation({L.sf, zero, {after(t_bwd)}, drive});
     m.add_modulation({L.sb, drive, {after(t_bwd)}, zero});
@@ -158,6 +159,11 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
     SynapseIdx si = command_inhibition_synapse(def);
     m.add_synapse(stop, L.sf, si);
     m.add_synapse(stop, L.sb, si);
+    // "Both interneurons are active and both motoneurons are inhibited" (Section 3.2.2): with
+    // g_MN = 0.40 nS (docs/model.md) the 0.25 nS IN -> MN inhibition does not keep the PR MNs
+    // silent through the CPG switches, so the command neuron also inhibits them directly.
+    m.add_synapse(stop, L.pr.mn_inc, si);
+    m.add_synapse(stop, L.pr.mn_dec, si);
     m.add_modulation({stop, drive, {after(t_side)}, zero});
     m.add_modulation({L.sf, zero, {after(t_side)}, drive});  // and SF's central drive ends
     size_t ext = m.parameters().index(leg + ".fti.cpg_ext.g_app");
@@ -170,6 +176,15 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
     size_t t_side_end = def(leg + ".command.sideward_end_ms", kNever, "ms", "Knops 2013, Section 3.2.3 (curve walking)",
                             "central command: back to forward stepping after sideward_ms", 0);
     m.add_modulation({stop, zero, {after(t_side_end)}, drive});
+    // With both PR motoneurons silent, both ThC spring constants decay to 0 with the same rate
+    // b as in (2.84), keeping k_R/k_P and hence the angle reached at the command (the
+    // fixation angles 28, 102, 128 deg of Section 3.2.2): release of the resting spring
+    // constants (see Muscle in network_model.hpp) from the command to its end.
+    size_t release = def(leg + ".sideward.rest_tone_release", 1.0, "1", "Knops 2013, eq. (2.84) / Section 3.2.2",
+                         "fraction of the ThC resting spring constants that needs an active antagonist during "
+                         "sideward stepping (1: both k decay to 0 when both PR MNs are silent)", 0, 1);
+    for (size_t mus : {m.joints()[L.pr.joint].muscle_inc, m.joints()[L.pr.joint].muscle_dec})
+      m.add_modulation({mus, release, {after(t_side), before(t_side_end)}, kNoIndex, Modulation::RestTone});
     m.add_modulation({L.sf, drive, {after(t_side_end)}, zero});
     m.add_modulation({L.fe.cpg_dec, ext, {after(t_side_end)}, s_ext});
     m.add_modulation({L.fe.cpg_inc, flx, {after(t_side_end)}, s_flx});

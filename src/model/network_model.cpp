@@ -73,7 +73,7 @@ std::vector<double> NetworkModel::breakpoints(const std::vector<double>& p, doub
   std::vector<double> b;
   for (const Modulation& m : modulations_)
     for (const Condition& c : m.conditions)
-      if (c.kind == Condition::TimeAfter && p[c.threshold] > 0 && p[c.threshold] < t_end) b.push_back(p[c.threshold]);
+      if ((c.kind == Condition::TimeAfter || c.kind == Condition::TimeBefore) && p[c.threshold] > 0 && p[c.threshold] < t_end) b.push_back(p[c.threshold]);
   // One command may step several drives at once: report each time once (sorted).
   std::sort(b.begin(), b.end());
   b.erase(std::unique(b.begin(), b.end()), b.end());

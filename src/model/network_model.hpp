@@ -65,22 +65,32 @@ struct Synapse {
 
 // A condition of a sensory or central switch; all conditions of a Modulation multiply.
 struct Condition {
-  enum Kind { AngleBelow, AngleAbove, TimeAfter } kind;
+  enum Kind { AngleBelow, AngleAbove, TimeAfter, TimeBefore } kind;
   size_t angle_state = 0;  // rad (AngleBelow/AngleAbove)
-  size_t threshold = 0;    // parameter: deg, or ms for TimeAfter
+  size_t threshold = 0;    // parameter: deg, or ms for TimeAfter/TimeBefore
   size_t width = 0;        // parameter: deg (sigmoid width)
 };
 
 // Adds p[delta] (nS) to a neuron's applied conductance while the conditions hold; with a
 // reference parameter it adds p[delta] - p[reference] instead, so that `delta` can name the
 // value the conductance is raised (or lowered) to, e.g. IN4: 0.60 -> 3.90 nS.
+// Target RestTone: `neuron` is a muscle index and the sum is the muscle's rest-tone release w
+// (dimensionless, see Muscle).
 struct Modulation {
+  enum Target { Drive, RestTone };
   size_t neuron;
   size_t delta;
   std::vector<Condition> conditions;
   size_t reference = kNoIndex;
+  Target target = Drive;
 };
 
+// Spring constant k = k_rest + (k_active - k_rest) a. With a rest-tone release w (0 unless a
+// RestTone Modulation sets it) the resting part needs an active antagonist (the joint's other
+// muscle, activation a'): k = k_active a + k_rest (1 - a) (1 - w + w a'). w = 1 lets both k of
+// a joint decay to 0 with the same rate b when both motoneurons are silent, as in (2.84),
+// which keeps their ratio and hence the joint's equilibrium angle (sideward stepping,
+// docs/walking_model.md).
 struct Muscle {
   size_t motoneuron;   // neuron index
   size_t activation;   // state index of the activation a in [0, 1]
@@ -154,9 +164,10 @@ T smooth_step(const T& x, const T& width) {
 template <class T>
 void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
   constexpr double kRadToDeg = 180.0 / M_PI;
-  thread_local std::vector<T> I_syn, g_extra;
+  thread_local std::vector<T> I_syn, g_extra, tone_release;
   I_syn.assign(neurons_.size(), T(0.0));
   g_extra.assign(neurons_.size(), T(0.0));
+  tone_release.assign(muscles_.size(), T(0.0));
 
   for (const Synapse& s : synapses_) {
     const T& V_pre = y[neurons_[s.pre].state];
@@ -182,10 +193,14 @@ void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
         case Condition::TimeAfter:  // central command: a step at a fixed time (a breakpoint)
           if (t < value_of(p[c.threshold])) gate = T(0.0);
           break;
+        case Condition::TimeBefore:  // until a later command (a breakpoint)
+          if (t >= value_of(p[c.threshold])) gate = T(0.0);
+          break;
       }
     }
-    if (m.reference == kNoIndex) g_extra[m.neuron] += p[m.delta] * gate;
-    else g_extra[m.neuron] += (p[m.delta] - p[m.reference]) * gate;
+    std::vector<T>& target = m.target == Modulation::RestTone ? tone_release : g_extra;
+    if (m.reference == kNoIndex) target[m.neuron] += p[m.delta] * gate;
+    else target[m.neuron] += (p[m.delta] - p[m.reference]) * gate;
   }
   for (size_t i = 0; i < neurons_.size(); ++i) {
     const Neuron& n = neurons_[i];
@@ -224,8 +239,13 @@ void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
   for (const Joint& j : joints_) {
     const Muscle& mi = muscles_[j.muscle_inc];
     const Muscle& md = muscles_[j.muscle_dec];
-    T k_inc = p[mi.k_rest] + (p[mi.k_active] - p[mi.k_rest]) * y[mi.activation];
-    T k_dec = p[md.k_rest] + (p[md.k_active] - p[md.k_rest]) * y[md.activation];
+    const T &a_inc = y[mi.activation], &a_dec = y[md.activation];
+    const T &w_inc = tone_release[j.muscle_inc], &w_dec = tone_release[j.muscle_dec];
+    // k_rest + (k_active - k_rest) a, minus the released rest tone (see Muscle).
+    T k_inc = p[mi.k_rest] + (p[mi.k_active] - p[mi.k_rest]) * a_inc -
+              w_inc * p[mi.k_rest] * (1.0 - a_inc) * (1.0 - a_dec);
+    T k_dec = p[md.k_rest] + (p[md.k_active] - p[md.k_rest]) * a_dec -
+              w_dec * p[md.k_rest] * (1.0 - a_dec) * (1.0 - a_inc);
     ydot[j.angle_state] = y[j.velocity_state] * 1e-3;  // rad/s -> rad/ms
     ydot[j.velocity_state] =
         joint_acceleration(j.mech, p, y[j.angle_state], y[j.velocity_state], k_inc, k_dec) * 1e-3;
