@@ -111,6 +111,27 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
     m.add_modulation({hold, zero, {after(rel)}, drive});
     m.add_modulation({hold, drive, {after(hold2)}, zero});
     m.add_modulation({hold, zero, {after(rel2)}, drive});
+    // "The levator ... is suppressed" (Section 3.3) during a gait-transition hold: inhibiting
+    // the levator CPG alone keeps the levator MN silent only through IN inhibition, from which
+    // it escapes after ~300 ms as its adaptation (m_q, r_q = 0.0005/ms) decays; the tripod ->
+    // tetrapod protocol holds the front leg for ~600 ms. So the levator MN's tonic drive is
+    // lowered to ld_hold.g_mn_lev from ld_hold_ms to ld_release2_ms (the start-time hold from
+    // t = 0 is unchanged). docs/walking_model.md, "Gait transitions".
+    size_t g_mn = m.parameters().index("mn.g_app");
+    size_t mn_held = def(h + "g_mn_lev", 0.0, "nS",
+                         std::string(kChoice) + ": levator MN silent for the whole transition hold (Section 3.3)",
+                         "tonic drive of the levator MN during a gait-transition hold (ld_hold_ms to ld_release2_ms)", 0);
+    m.add_modulation({L.ld.mn_inc, mn_held, {after(hold2)}, g_mn});
+    m.add_modulation({L.ld.mn_inc, g_mn, {after(rel2)}, mn_held});
+    // "Forcing the depressor CPG neuron to be active" (Section 2.5.4): without levator
+    // inhibition the depressor CPG ends its burst by its own NaP inactivation after ~500 ms and
+    // bursts again, so a long hold released near such a new burst co-activates both CPGs (a
+    // ~560 ms levation). An extra depressor CPG drive while held keeps it active until the reset.
+    size_t dep_extra = def(h + "g_cpg_dep", 0.3, "nS",
+                           std::string(kChoice) + ": depressor CPG kept active through the transition hold (Section 2.5.4)",
+                           "extra drive of the depressor CPG during a gait-transition hold (ld_hold_ms to ld_release2_ms)", 0);
+    m.add_modulation({L.ld.cpg_dec, dep_extra, {after(hold2)}});
+    m.add_modulation({L.ld.cpg_dec, zero, {after(rel2)}, dep_extra});
   }
 
   if (o.direction_switch) {
