@@ -2,13 +2,16 @@
 // Section 2.6: 2 s for one joint, 15 s for one leg, 180 s for three legs, each for 9 s of
 // walking). Usage:
 //   bench_walking [T_END_MS=9000] [models=joint,leg,three] [dense|band|klu|auto]
-//                 [motoneurons=spiking,rate] [RTOL=1e-6]
+//                 [motoneurons=spiking,rate] [RTOL=1e-6] [kernels=phasmid[,sundials]]
 // Prints one line per model and motoneuron formulation (Hodgkin-Huxley "spiking" MNs or the
 // "rate" formulation, docs/model.md): states, simulated ms, wall s, steps, RHS and Jacobian
 // evaluations, the ratio to the 2013 time scaled to the simulated duration, and gait features
 // to compare formulations and tolerances (after T_END/2, at most 2500 ms, is discarded): the
 // period (the FTi joint's; the middle leg's step period for leg and three legs), for the
-// three legs the lags hind->middle and middle->front (in periods).
+// three legs the lags hind->middle and middle->front (in periods). `kernels=phasmid,sundials`
+// adds a row per model with Debian's own (unoptimised) SUNDIALS vector/matrix kernels, the
+// baseline of solver/serial_kernels.hpp. Environment: BENCH_MAXORD=q limits the BDF order,
+// BENCH_STALD=1 switches on CVODES' stability limit detection (both measured, not adopted).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -30,6 +33,7 @@ int main(int argc, char** argv) {
   const std::string which = argc > 2 ? argv[2] : "joint,leg,three";
   const std::string ls = argc > 3 ? argv[3] : "auto";
   const std::string formulations = argc > 4 ? argv[4] : "spiking,rate";
+  const std::string kernels = argc > 6 ? argv[6] : "phasmid";
   solver::SolverOptions so;
   so.rtol = so.atol = argc > 5 ? std::atof(argv[5]) : 1e-6;  // default: the three-leg configs' tolerance
   if (const char* e = std::getenv("BENCH_MAXORD")) so.max_order = std::atoi(e);
@@ -44,13 +48,14 @@ int main(int argc, char** argv) {
   };
   const Case cases[] = {{"joint", "single joint (FTi)", 2.0}, {"leg", "middle leg", 15.0}, {"three", "three legs (tetrapod)", 180.0}};
   std::printf("# bench_walking: %.0f ms simulated, rtol = atol = %g, %s linear solver\n", t_end, so.rtol, ls.c_str());
-  std::printf("%-32s %7s %8s %8s %8s %8s %9s %7s %14s %8s %8s %7s %7s\n", "model", "states", "sim_ms", "wall_s", "cpu_s", "steps",
+  std::printf("%-38s %7s %8s %8s %8s %8s %9s %7s %14s %8s %8s %7s %7s\n", "model", "states", "sim_ms", "wall_s", "cpu_s", "steps",
               "rhs", "jac", "2013_s(scaled)", "ratio",
               "period", "lag_hm", "lag_mf");
   for (const Case& c : cases) {
     if (which.find(c.key) == std::string::npos) continue;
-    for (const char* form : {"spiking", "rate"}) {
-      if (formulations.find(form) == std::string::npos) continue;
+    for (const char* form : {"spiking", "rate"})
+    for (const char* kern : {"phasmid", "sundials"}) {
+      if (formulations.find(form) == std::string::npos || kernels.find(kern) == std::string::npos) continue;
       const model::MotoneuronModel mn = model::parse_motoneuron_model(form);
       std::unique_ptr<model::NetworkModel> m;
       if (std::string(c.key) == "joint") {
@@ -65,7 +70,9 @@ int main(int argc, char** argv) {
         o.motoneuron = mn;
         m = model::build_three_leg_model(o);
       }
-      solver::Simulator sim(*m, so);
+      solver::SolverOptions sok = so;
+      if (std::string(kern) == "sundials") sok.vector_kernels = solver::VectorKernels::Sundials;
+      solver::Simulator sim(*m, sok);
       auto t0 = std::chrono::steady_clock::now();
       std::clock_t c0 = std::clock();
       auto r = sim.run(m->parameters().values(), solver::output_grid(t_end, 5.0), features::feature_roots(*m));
@@ -77,8 +84,8 @@ int main(int argc, char** argv) {
       std::map<std::string, double> f;
       for (auto& x : features::compute_features(*m, r, fo)) f[x.name] = x.value;
       auto get = [&](const char* k) { return f.count(k) ? f[k] : NAN; };
-      const std::string label = std::string(c.label) + " " + form;
-      std::printf("%-32s %7zu %8.0f %8.2f %8.2f %8ld %9ld %7ld %14.1f %8.3f %8.1f %7.3f %7.3f\n", label.c_str(),
+      const std::string label = std::string(c.label) + " " + form + (std::string(kern) == "sundials" ? " [sun]" : "");
+      std::printf("%-38s %7zu %8.0f %8.2f %8.2f %8ld %9ld %7ld %14.1f %8.3f %8.1f %7.3f %7.3f\n", label.c_str(),
                   m->num_states(), t_end, wall, cpu, r.stats.steps, r.stats.rhs_evals, r.stats.jac_evals, ref, wall / ref,
                   f.count("middle.step_period_ms") ? f["middle.step_period_ms"] : get("period_ms"), get("phase_lag.hind_to_middle"), get("phase_lag.middle_to_front"));
     }
