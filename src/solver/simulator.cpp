@@ -384,7 +384,16 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
     std::vector<double> pbar(ns);
     for (size_t j = 0; j < ns; ++j) pbar[j] = std::abs(p[sens_params[j]]) > 0 ? std::abs(p[sens_params[j]]) : 1.0;
     check_flag(CVodeSetSensParams(h.mem, nullptr, pbar.data(), nullptr), "CVodeSetSensParams");
-    if (options_.sensitivity_tolerance_factor == 1.0) {
+    if (!options_.sensitivity_atol_scale.empty()) {
+      if (options_.sensitivity_atol_scale.size() != n) throw Error("internal: sensitivity_atol_scale size mismatch");
+      const double f = options_.sensitivity_tolerance_factor;
+      N_Vector* atolS = N_VCloneVectorArray(h.ns, h.y);
+      for (int j = 0; j < h.ns; ++j)
+        for (size_t i = 0; i < n; ++i) NV_Ith_S(atolS[j], i) = f * options_.atol / pbar[j] * options_.sensitivity_atol_scale[i];
+      const int flag = CVodeSensSVtolerances(h.mem, f * options_.rtol, atolS);
+      N_VDestroyVectorArray(atolS, h.ns);
+      check_flag(flag, "CVodeSensSVtolerances");
+    } else if (options_.sensitivity_tolerance_factor == 1.0) {
       check_flag(CVodeSensEEtolerances(h.mem), "CVodeSensEEtolerances");
     } else {
       const double f = options_.sensitivity_tolerance_factor;

@@ -45,6 +45,9 @@ struct SolverOptions {
   // Sensitivity tolerances: rtolS = factor * rtol, atolS_j = factor * atol / pbar_j with
   // pbar_j = |p_j| (factor 1 = CVodeSensEEtolerances). Only with error control on.
   double sensitivity_tolerance_factor = 1.0;
+  // Per-state factor on atolS (empty: 1 for every state). A large factor takes that state's
+  // sensitivity out of the error test while the others stay in it (CVodeSensSVtolerances).
+  std::vector<double> sensitivity_atol_scale;
   // Copy the sensitivities at every output time into SolveResult::s (off: only at events,
   // which is all the features need; saves CVodeGetSens and memory on a fine output grid).
   bool sensitivities_at_outputs = true;
