@@ -101,6 +101,23 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
     size_t hold = m.add_nap_neuron(leg + ".ld_hold", q, -30, 0.3);
     SynapseIdx si = command_inhibition_synapse(def);
     m.add_synapse(hold, L.ld.cpg_inc, si);
+    if (o.ld_hold_g_pr > 0) {
+      // The PR system is a reflex chain, "not active in the absence of the (excitatory)
+      // peripheral input" (Section 2.5.3), but phasmid's PR CPG oscillates on its own (633 ms
+      // at IN4 = 0.60 nS) and, with the held leg at beta ~ 40 deg (just above beta_thr_pr),
+      // ran freely through the hold: its phase at the release then depended on the release
+      // time, and a leg released in the PR's protraction phase retracted during its first swing,
+      // protracted during its first stance and needed up to four more steps to retract in
+      // stance (the apparent "second locking" of curve walking). The hold neuron therefore
+      // silences both PR CPGs until the leg's start time, so every leg starts its PR from the
+      // same state. docs/walking_model.md, "Curve walking".
+      SynapseIdx sp = si;
+      sp.g = def(h + "g_pr", o.ld_hold_g_pr, "nS",
+                 o.ld_hold_g_pr_source.empty() ? std::string(kChoice) : o.ld_hold_g_pr_source,
+                 "inhibition of both PR CPGs (retractor, protractor) by the levator-hold command neuron", 0);
+      m.add_synapse(hold, L.pr.cpg_inc, sp);
+      m.add_synapse(hold, L.pr.cpg_dec, sp);
+    }
     size_t rel = def(leg + ".command.ld_release_ms", o.ld_release_ms, "ms",
                      o.ld_release_source.empty() ? std::string(kChoice) : o.ld_release_source,
                      "end of the central levator inhibition: the leg's first lift-off (start time)", 0);
@@ -339,6 +356,8 @@ std::unique_ptr<NetworkModel> build_curve_walking_model(MotoneuronModel mn) {
     o.cs_on_source = std::string(kChoice) + ": CS input on; the start time is ld_release_ms";
     o.ld_release_ms = std::string(leg) == "L2" ? 1500.0 : 1755.0;
     o.ld_release_source = "Knops 2013, Section 3.2.3 (left and right middle legs alternate with half a period, 255 ms)";
+    o.ld_hold_g_pr = 5.0;
+    o.ld_hold_g_pr_source = std::string(kChoice) + ": PR silent until the start time, as syn.command_inh.g (Section 2.5.3: the PR is a reflex chain)";
     add_leg_network(*m, c, leg, o);
   }
   def("body.reach_mm", 15.0, "mm", std::string(kChoice) + ": horizontal distance ThC joint - foot (femur 13 mm, tibia 12 mm, Table A.13, projected)",

@@ -28,6 +28,12 @@ struct LegOptions {
   // ld_release2_ms (gait transitions). Negative ld_release_ms: no hold network.
   double ld_release_ms = -1.0;
   std::string ld_release_source;
+  // Inhibition of both PR CPGs by the same command neuron while it holds the leg
+  // (<leg>.ld_hold.g_pr, nS): 0 (no synapses) keeps the PR free-running during the hold
+  // (three-leg model); curve walking silences it so that every leg starts its PR from the
+  // same state whatever its start time.
+  double ld_hold_g_pr = 0.0;
+  std::string ld_hold_g_pr_source;
   MotoneuronModel motoneuron = MotoneuronModel::Spiking;  // used by build_leg_model
 };
 
