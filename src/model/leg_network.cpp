@@ -88,6 +88,17 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
   m.add_modulation({L.fe.sens_exc, g_fe, {below(L.beta_state, beta_fe, L.width)}, fe_base});
   m.add_modulation({L.fe.sens_exc, g_fco, {below(L.beta_state, beta_fe, L.width), above(L.gamma_state, gamma_thr, L.width)}, g_fe});
   m.add_modulation({L.ld.sens_exc, g_cs, {after(cs_on)}, cs_base});
+  // IN12 -> IN11 (FE system, Fig. 2.13: IN11 "is excited by" IN12 and inhibits the extensor
+  // CPG C5, Section 2.5.3). Table A.4 lists no class for this synapse; with the excitatory
+  // IN -> CPG class (0.1 nS) IN11 (g_L = 6.8 nS) stays at -61 mV and the FE system is not
+  // entrained by beta (docs/walking_model.md, "FE entrainment").
+  {
+    SynapseIdx q = c.in_cpg_exc;
+    q.g = def(pre + "g_in12_in11", 0.5, "nS",
+              std::string(kChoice) + ": IN11 reaches its plateau while IN12 is raised; the FE system locks 1:1 to LD for 0.35-0.5 nS",
+              "maximal conductance of the IN12 -> IN11 excitation (otherwise the excitatory IN -> CPG class of Table A.4)", 0);
+    m.set_synapse_params(L.fe.syn_sens, q);
+  }
 
   if (o.ld_release_ms >= 0) {
     // "central inhibition of the levator CPG neuron in the respective leg, i.e. forcing the

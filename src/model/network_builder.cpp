@@ -188,7 +188,7 @@ JointNetwork add_joint_network(NetworkModel& m, const NeuronClasses& c, const st
   // inhibits the levator CPG C3 via IN7 (Section 2.5.3), i.e. the dec side.
   const size_t excited = ld ? jn.cpg_dec : jn.cpg_inc, inhibited = ld ? jn.cpg_inc : jn.cpg_dec;
   m.add_synapse(jn.sens_exc, excited, c.in_cpg_exc);
-  m.add_synapse(jn.sens_exc, jn.sens_inh, c.in_cpg_exc);  // IN3 "is excited by IN4" (Fig. 2.12)
+  jn.syn_sens = m.add_synapse(jn.sens_exc, jn.sens_inh, c.in_cpg_exc);  // IN3 "is excited by IN4" (Fig. 2.12)
   m.add_synapse(jn.sens_inh, inhibited, c.in_cpg_inh);
 
   JointMechanics mech = define_joint_mechanics(m.parameters(), leg, type, thc_set);

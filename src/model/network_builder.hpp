@@ -32,6 +32,8 @@ struct JointNetwork {
   // when present, "crossed" (inc CPG excites the IN of its own MN, Figs. 3.11, 3.17).
   size_t syn_par_inc = kNoIndex, syn_par_dec = kNoIndex;  // from cpg_inc / cpg_dec
   size_t syn_crs_inc = kNoIndex, syn_crs_dec = kNoIndex;
+  // Sensory IN -> sensory IN excitation (IN4 -> IN3, INCS -> IN7, IN12 -> IN11; Fig. 2.12).
+  size_t syn_sens = kNoIndex;
 };
 
 // How the CPG drives the MN-inhibiting interneurons: parallel (Fig. 2.12), crossed (the hind

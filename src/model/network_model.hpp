@@ -122,6 +122,7 @@ class NetworkModel : public OdeModelT<NetworkModel> {
     return synapses_.size() - 1;
   }
   void set_synapse_gate(size_t synapse, PresynapticGate gate) { synapses_.at(synapse).gate = gate; }
+  void set_synapse_params(size_t synapse, const SynapseIdx& q) { synapses_.at(synapse).q = q; }
   const std::vector<Synapse>& synapses() const { return synapses_; }
   const std::vector<Modulation>& modulations() const { return modulations_; }
   void add_modulation(Modulation m) { modulations_.push_back(std::move(m)); }
