@@ -18,21 +18,30 @@
 
 using namespace phasmid;
 
+namespace {
+
+// Poincare section: the levator CPG neuron depolarising (its voltage rising through -25 mV,
+// once per step). The default section (maxima of the first joint angle) is unusable here:
+// alpha_dot and beta_dot cross zero several times per step during motoneuron bursts.
+// Without sensitivity error control: 34 000 instead of 92 000 steps for the spiking leg (half
+// the CPU time); the monodromy stays accurate to the flow identity's 4e-4 (6e-6 with it, docs).
+sensitivity::FloquetOptions middle_leg_options(const model::OdeModel& m, double transient_ms) {
+  sensitivity::FloquetOptions o;
+  o.section = {m.state_index("middle.ctr.cpg_lev.V"), -25.0, +1};
+  o.transient_ms = transient_ms;
+  o.max_period_ms = 700;
+  o.solver.rtol = o.solver.atol = 1e-8;
+  o.solver.sensitivity_error_control = false;
+  return o;
+}
+
+}  // namespace
+
 TEST(LegFloquet, MiddleLegMonodromyHasOneTrivialMultiplier) {
   auto cfg = config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/middle_leg_forward.toml");
   auto m = config::build_model(cfg);
   ASSERT_EQ(m->num_states(), 78u);
-  sensitivity::FloquetOptions o;
-  // Poincare section: the levator CPG neuron depolarising (its voltage rising through -25 mV,
-  // once per step). The default section (maxima of the first joint angle) is unusable here:
-  // alpha_dot and beta_dot cross zero several times per step during motoneuron bursts.
-  o.section = {m->state_index("middle.ctr.cpg_lev.V"), -25.0, +1};
-  o.transient_ms = 3000;
-  o.max_period_ms = 700;
-  o.solver.rtol = o.solver.atol = 1e-8;
-  // Without sensitivity error control: 34 000 instead of 92 000 steps (half the CPU time);
-  // the monodromy stays accurate to the flow identity's 4e-4 (6e-6 with it, docs).
-  o.solver.sensitivity_error_control = false;
+  const auto o = middle_leg_options(*m, 3000);
   const auto p = m->parameters().values();
   auto r = sensitivity::floquet_analysis(*m, p, o);
   std::printf("period %.3f ms, closure %.3g, trivial multiplier error %.3g, flow identity %.3g, %ld steps\n",
@@ -64,12 +73,7 @@ TEST(LegFloquet, RateMotoneuronMiddleLegCycleIsStable) {
   auto cfg = config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/middle_leg_forward.toml");
   cfg.table["model"].as_table()->insert_or_assign("motoneuron", "rate");
   auto m = config::build_model(cfg);
-  sensitivity::FloquetOptions o;
-  o.section = {m->state_index("middle.ctr.cpg_lev.V"), -25.0, +1};
-  o.transient_ms = 8000;
-  o.max_period_ms = 700;
-  o.solver.rtol = o.solver.atol = 1e-8;
-  o.solver.sensitivity_error_control = false;
+  const auto o = middle_leg_options(*m, 8000);
   const auto p = m->parameters().values();
   auto r = sensitivity::floquet_analysis(*m, p, o);
   std::printf("period %.3f ms, closure %.3g, trivial multiplier error %.3g, flow identity %.3g\n", r.orbit.period_ms,
