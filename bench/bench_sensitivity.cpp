@@ -94,7 +94,7 @@ struct Variant {
 };
 
 std::vector<Variant> variants() {
-  solver::SolverOptions o;  // the defaults: staggered, batched Jet<8> right-hand side, errcon, EE tolerances
+  solver::SolverOptions o;  // the defaults: simultaneous corrector, batched Jet<8> right-hand side, errcon, EE tolerances
   o.sensitivities_at_outputs = false;  // as analyse_sensitivities without trajectory output
   std::vector<Variant> v{{"default", o}};
   auto add = [&](const char* label, const std::function<void(solver::SolverOptions&)>& change) {
@@ -108,7 +108,7 @@ std::vector<Variant> variants() {
     x.sensitivities_at_outputs = true;
   });
   add("per-par", [](auto& x) { x.sensitivity_rhs = solver::SensitivityRhs::PerParameter; });
-  add("simult.", [](auto& x) { x.sensitivity_method = solver::SensitivityMethod::Simultaneous; });
+  add("stagg.", [](auto& x) { x.sensitivity_method = solver::SensitivityMethod::Staggered; });
   add("tolS x10", [](auto& x) { x.sensitivity_tolerance_factor = 10.0; });
   add("no-errcon", [](auto& x) { x.sensitivity_error_control = false; });
   add("klu", [](auto& x) { x.linear_solver = solver::LinearSolverKind::Klu; });
@@ -268,7 +268,7 @@ int main(int argc, char** argv) {
     bench("single-joint FTi network, rate motoneurons (motoneuron = \"rate\")", *rate, t_net, 1, net_params);
     if (want("rate-accuracy")) accuracy("single-joint FTi network, rate motoneurons", *rate, t_net, 1000.0, net_params);
   }
-  std::printf("\nColumns: run time / plain run time (default = staggered corrector, batched Jet<8> sensitivity right-hand side,\n"
+  std::printf("\nColumns: run time / plain run time (default = simultaneous corrector, batched Jet<8> sensitivity right-hand side,\n"
               "sensitivity error control with EE tolerances, sensitivities fetched at events only); 'steps x' = CVODES\n"
               "steps of the default / plain steps.\n");
   return 0;

@@ -35,11 +35,11 @@ struct SolverOptions {
   IntegratorKind integrator = IntegratorKind::Bdf;
   LinearSolverKind linear_solver = LinearSolverKind::Auto;
   JacobianKind jacobian = JacobianKind::AutoDiff;
-  // Staggered. Simultaneous costs the same and gave 4x more accurate feature sensitivities
-  // on the 26-state network (`staggered = false` in [sensitivity]), but with it NLopt's LBFGS
-  // stopped with FAILURE on the fit-backend test (gradients of trajectory residuals);
-  // docs/benchmarks.md.
-  SensitivityMethod sensitivity_method = SensitivityMethod::Staggered;
+  // Simultaneous: the same cost as staggered and 4x more accurate feature sensitivities on
+  // the 26-state network (0.38 % vs 1.49 % worst deviation; `staggered = true` in
+  // [sensitivity] selects the other). An earlier LBFGS failure with it on the fit-backend test
+  // no longer occurs (docs/benchmarks.md, "After the compiled kernels").
+  SensitivityMethod sensitivity_method = SensitivityMethod::Simultaneous;
   SensitivityRhs sensitivity_rhs = SensitivityRhs::Batched;
   bool sensitivity_error_control = true;
   // Sensitivity tolerances: rtolS = factor * rtol, atolS_j = factor * atol / pbar_j with
