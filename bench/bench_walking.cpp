@@ -96,6 +96,9 @@ int main(int argc, char** argv) {
       std::printf("%-38s %7zu %8.0f %8.2f %8.2f %8ld %9ld %7ld %14.1f %8.3f %8.1f %7.3f %7.3f\n", label.c_str(),
                   m->num_states(), t_end, wall, cpu, r.stats.steps, r.stats.rhs_evals, r.stats.jac_evals, ref, wall / ref,
                   f.count("middle.step_period_ms") ? f["middle.step_period_ms"] : get("period_ms"), get("phase_lag.hind_to_middle"), get("phase_lag.middle_to_front"));
+      std::fprintf(stderr, "#   %s: error-test failures %ld, Newton iterations %ld (failures %ld), linear-solver setups %ld\n",
+                   label.c_str(), r.stats.error_test_failures, r.stats.newton_iterations, r.stats.newton_failures,
+                   r.stats.linear_setups);
     }
   }
   return 0;

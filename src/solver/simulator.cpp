@@ -458,6 +458,22 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   std::vector<double> ydot(n);
 
   long steps_before_restarts = 0;  // CVodeReInit resets the step counter
+  // Adds CVODES' counters since the last (re)start to the run's statistics.
+  auto accumulate_counters = [&] {
+    long v = 0;
+    CVodeGetNumErrTestFails(h.mem, &v);
+    res.stats.error_test_failures += v;
+    CVodeGetNumNonlinSolvIters(h.mem, &v);
+    res.stats.newton_iterations += v;
+    CVodeGetNumNonlinSolvConvFails(h.mem, &v);
+    res.stats.newton_failures += v;
+    CVodeGetNumLinSolvSetups(h.mem, &v);
+    res.stats.linear_setups += v;
+    CVodeGetNumRhsEvals(h.mem, &v);
+    res.stats.rhs_evals += v;
+    CVodeGetNumJacEvals(h.mem, &v);
+    res.stats.jac_evals += v;
+  };
   auto total_steps = [&] {
     long v = 0;
     CVodeGetNumSteps(h.mem, &v);
@@ -517,6 +533,7 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
       // Sensitivities are continuous across such fixed-time switches (the switch time does
       // not depend on the parameters), so they are carried over unchanged.
       steps_before_restarts = total_steps();
+      accumulate_counters();
       check_flag(CVodeReInit(h.mem, t, h.y), "CVodeReInit");
       if (ns) {
         // The state is continuous; if the switch time moves with p_j the sensitivity jumps:
@@ -549,12 +566,8 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   }
   if (show_progress) std::fprintf(stderr, "\r%s: t = %.0f / %.0f ms (100%%)\n", options_.progress_label.c_str(), t_end, t_end);
 
-  long v = 0;
   res.stats.steps = total_steps();
-  CVodeGetNumRhsEvals(h.mem, &v);
-  res.stats.rhs_evals = v;
-  CVodeGetNumJacEvals(h.mem, &v);
-  res.stats.jac_evals = v;
+  accumulate_counters();
   res.stats.sens_rhs_evals = d.sens_evals;
   res.stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return res;

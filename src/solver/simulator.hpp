@@ -80,6 +80,9 @@ struct Event {
 
 struct SolverStats {
   long steps = 0, rhs_evals = 0, jac_evals = 0, sens_rhs_evals = 0, restarts = 0;
+  // Over the whole run (CVodeReInit at breakpoints resets CVODES' own counters): error-test
+  // failures, Newton iterations and convergence failures, linear-solver setups.
+  long error_test_failures = 0, newton_iterations = 0, newton_failures = 0, linear_setups = 0;
   double wall_seconds = 0.0;
 };
 
