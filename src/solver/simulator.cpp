@@ -460,19 +460,19 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   long steps_before_restarts = 0;  // CVodeReInit resets the step counter
   // Adds CVODES' counters since the last (re)start to the run's statistics.
   auto accumulate_counters = [&] {
-    long v = 0;
-    CVodeGetNumErrTestFails(h.mem, &v);
-    res.stats.error_test_failures += v;
-    CVodeGetNumNonlinSolvIters(h.mem, &v);
-    res.stats.newton_iterations += v;
-    CVodeGetNumNonlinSolvConvFails(h.mem, &v);
-    res.stats.newton_failures += v;
-    CVodeGetNumLinSolvSetups(h.mem, &v);
-    res.stats.linear_setups += v;
-    CVodeGetNumRhsEvals(h.mem, &v);
-    res.stats.rhs_evals += v;
-    CVodeGetNumJacEvals(h.mem, &v);
-    res.stats.jac_evals += v;
+    using Getter = int (*)(void*, long*);
+    const std::pair<Getter, long SolverStats::*> counters[] = {
+        {CVodeGetNumErrTestFails, &SolverStats::error_test_failures},
+        {CVodeGetNumNonlinSolvIters, &SolverStats::newton_iterations},
+        {CVodeGetNumNonlinSolvConvFails, &SolverStats::newton_failures},
+        {CVodeGetNumLinSolvSetups, &SolverStats::linear_setups},
+        {CVodeGetNumRhsEvals, &SolverStats::rhs_evals},
+        {CVodeGetNumJacEvals, &SolverStats::jac_evals}};
+    for (const auto& [get, field] : counters) {
+      long v = 0;
+      get(h.mem, &v);
+      res.stats.*field += v;
+    }
   };
   auto total_steps = [&] {
     long v = 0;

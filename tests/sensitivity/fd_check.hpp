@@ -6,6 +6,18 @@
 
 namespace phasmid::sensitivity_test {
 
+// Options of a feature-sensitivity comparison: features only (no trajectory), 5 ms output grid.
+inline sensitivity::SensitivityOptions feature_options(std::vector<std::string> parameters, double t_end_ms,
+                                                       double discard_ms) {
+  sensitivity::SensitivityOptions o;
+  o.parameters = std::move(parameters);
+  o.t_end_ms = t_end_ms;
+  o.discard_ms = discard_ms;
+  o.output_dt_ms = 5;
+  o.write_trajectory = false;
+  return o;
+}
+
 struct ForwardAndFd {
   sensitivity::SensitivityReport fwd, fd, fd2;
 };

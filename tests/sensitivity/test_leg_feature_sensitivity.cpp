@@ -20,12 +20,8 @@ TEST(LegFeatureSensitivity, PerLegFeaturesMatchCentralDifferences) {
   auto cfg = config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/middle_leg_forward.toml");
   cfg.table["model"].as_table()->insert_or_assign("motoneuron", "rate");
   auto m = config::build_model(cfg);
-  sensitivity::SensitivityOptions o;
-  o.parameters = {"middle.ctr.cpg_lev.g_app", "middle.coupling.beta_thr_pr", "syn.cpg_in.V_h"};
-  o.t_end_ms = 3600;
-  o.discard_ms = 1500;
-  o.output_dt_ms = 5;
-  o.write_trajectory = false;
+  auto o = sensitivity_test::feature_options(
+      {"middle.ctr.cpg_lev.g_app", "middle.coupling.beta_thr_pr", "syn.cpg_in.V_h"}, 3600, 1500);
   auto [fwd, fd, fd2] = sensitivity_test::forward_and_fd(*m, o, 1e-10, 1e-11, 3e-5);
   ASSERT_EQ(fwd.features.size(), fd.features.size());
   const std::set<std::string> leg = {"middle.step_period_ms", "middle.stance_ms", "middle.swing_ms",

@@ -13,12 +13,7 @@ using namespace phasmid;
 TEST(NetworkSensitivity, FeatureSensitivitiesMatchCentralDifferences) {
   auto cfg = config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/sensitivity_single_joint.toml");
   auto m = config::build_model(cfg);
-  sensitivity::SensitivityOptions o;
-  o.parameters = {"middle.fti.cpg_flx.g_app", "middle.fti.k_F.flexion"};
-  o.t_end_ms = 2600;
-  o.discard_ms = 1000;
-  o.output_dt_ms = 5;
-  o.write_trajectory = false;
+  auto o = sensitivity_test::feature_options({"middle.fti.cpg_flx.g_app", "middle.fti.k_F.flexion"}, 2600, 1000);
   // Finite differences of event times need a tighter solver tolerance and a small step: at
   // rtol 1e-9 their noise is ~1.5% of d period / d g_app, and steps >= 1e-4 straddle a kink of
   // angle_min (the deepest of two near-equal local minima changes); with 3e-5 at 1e-11 they
