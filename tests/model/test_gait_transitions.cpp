@@ -154,12 +154,12 @@ TEST(GaitTransitions, TripodToTetrapod) {
   EXPECT_EQ(x.gait_class(2500, 5000), 2.0);  // tripod
   EXPECT_EQ(x.gait_class(6900, 8500), 1.0);  // tetrapod
   // Successively, within one cycle (Figs. 3.26/3.27): tetrapod from the hind leg's first
-  // lift-off after the switch (5120 ms) on.
+  // lift-off after the switch (the front touch-down at 5116 ms) on.
   EXPECT_EQ(x.gait_class(5250, 8500), 1.0);
 
   // One leg after the other: the hind leg (not held) lifts off at the end of its stance
-  // (5288 ms), the middle leg after its release at 5457 ms (5481 ms), the front leg after its
-  // release at 5625 ms (5651 ms). The front leg stays in stance through its 505 ms hold
+  // (5288 ms), the middle leg after its release at 5456 ms (5479 ms), the front leg after its
+  // release at 5625 ms (5650 ms). The front leg stays in stance through its 505 ms hold
   // (before the levator motoneuron was silenced it lifted off after ~320 ms, at 5446 ms).
   const double t_switch = 5150;  // after the switch and the middle leg's forced touch-down
   auto hind = x.liftoffs("hind", t_switch), middle = x.liftoffs("middle", t_switch),
