@@ -2,6 +2,7 @@
 #include <nlohmann/json.hpp>
 #include <iomanip>
 #include <iostream>
+#include <map>
 
 #include "app/verb.hpp"
 #include "config/config.hpp"
@@ -17,17 +18,29 @@ struct ParamsArgs {
 int run_params(const ParamsArgs& a) {
   auto cfg = config::load_config(a.config);
   auto m = config::build_model(cfg, a.sets);
+  // Command times set during the run by [[triggers]]: their value here is only "never".
+  std::map<std::string, std::string> triggered;
+  for (const auto& tr : m->triggers())
+    for (size_t k : tr.targets) triggered[m->parameters().at(k).name] = tr.event;
   if (a.json) {
     nlohmann::json out = nlohmann::json::array();
-    for (auto& p : m->parameters().all())
-      out.push_back({{"name", p.name}, {"value", p.value}, {"unit", p.unit}, {"source", p.source},
-                     {"description", p.description}});
+    for (auto& p : m->parameters().all()) {
+      nlohmann::json e = {{"name", p.name}, {"value", p.value}, {"unit", p.unit}, {"source", p.source},
+                          {"description", p.description}};
+      if (triggered.count(p.name)) e["triggered_by"] = triggered[p.name];
+      out.push_back(e);
+    }
     std::cout << out.dump(2) << "\n";
     return 0;
   }
-  for (auto& p : m->parameters().all())
-    std::cout << std::left << std::setw(40) << p.name << std::right << std::setw(12) << p.value << "  "
-              << std::left << std::setw(10) << p.unit << "  " << p.source << "\n";
+  for (auto& p : m->parameters().all()) {
+    std::cout << std::left << std::setw(40) << p.name << std::right << std::setw(12);
+    if (triggered.count(p.name)) std::cout << "triggered";
+    else std::cout << p.value;
+    std::cout << "  " << std::left << std::setw(10) << p.unit << "  " << p.source;
+    if (triggered.count(p.name)) std::cout << "; set during the run by [[triggers]] event " << triggered[p.name];
+    std::cout << "\n";
+  }
   return 0;
 }
 

@@ -15,6 +15,22 @@ struct SimulateArgs {
   bool quiet = false;
 };
 
+// One line per triggered command time (its value is needed to reproduce the run with fixed
+// times, e.g. for `phasmid sensitivity`), and one per trigger that never fired.
+void report_triggers(const model::OdeModel& m, const solver::SolveResult& r) {
+  const auto& triggers = m.triggers();
+  std::vector<bool> fired(triggers.size(), false);
+  for (const auto& c : r.commands) {
+    fired[c.trigger] = true;
+    std::cerr << "phasmid simulate: " << m.parameters().at(c.parameter).name << " = " << c.t_ms << " ms (trigger "
+              << triggers[c.trigger].event << ")\n";
+  }
+  for (size_t k = 0; k < triggers.size(); ++k)
+    if (!fired[k])
+      std::cerr << "phasmid simulate: warning: trigger " << triggers[k].event << " for "
+                << m.parameters().at(triggers[k].targets.front()).name << " did not fire before the end of the run\n";
+}
+
 int run_simulate(const SimulateArgs& a) {
   config::Config cfg = config::load_config(a.config);
   auto model = config::build_model(cfg, a.sets);
@@ -31,9 +47,12 @@ int run_simulate(const SimulateArgs& a) {
   io::H5Writer w(out);
   w.write_run_info({config::resolved_config_text(cfg, a.sets), command_line()});
   io::write_trajectory(w, *model, r);
+  // Command times resolved by [[triggers]] are recorded with the values they took in the run.
+  for (const auto& c : r.commands) p[c.parameter] = c.t_ms;
   io::write_parameters(w, *model, p);
   features::write_features_h5(w, feats);
   w.commit();
+  if (!a.quiet) report_triggers(*model, r);
   if (!a.quiet)
     std::cerr << "phasmid simulate: " << model->num_states() << " states, " << s.t_end_ms << " ms in "
               << r.stats.wall_seconds << " s -> " << out << "\n";

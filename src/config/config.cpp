@@ -7,6 +7,7 @@
 
 #include "common/embedded.hpp"
 #include "common/error.hpp"
+#include "config/triggers.hpp"
 #include "model/coupled_ctr_fti_model.hpp"
 #include "model/mechanical_joint_model.hpp"
 #include "model/leg_network.hpp"
@@ -187,15 +188,21 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
                 "' (expected mechanical_joint, coupled_ctr_fti, single_joint, leg, three_legs or curve_walking)");
   }
 
+  std::vector<std::string> fixed, overrides;
   if (const toml::table* pt = cfg.table["parameters"].as_table()) {
     std::vector<std::pair<std::string, const toml::node*>> entries;
     flatten(cfg, *pt, "", entries);
-    for (auto& [name, node] : entries) m->parameters().set(name, number(cfg, *node, name), where(cfg, *node));
+    for (auto& [name, node] : entries) {
+      m->parameters().set(name, number(cfg, *node, name), where(cfg, *node));
+      fixed.push_back(name);
+    }
   }
   for (const std::string& s : sets) {
     auto [name, value] = model::parse_assignment(s);
     m->parameters().set(name, value, "--set");
+    overrides.push_back(name);
   }
+  apply_triggers(cfg, *m, fixed, overrides);
   return m;
 }
 

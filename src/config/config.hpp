@@ -31,7 +31,8 @@ struct SimulationSettings {
   solver::SolverOptions solver;
 };
 
-// Builds the model of [model] and applies [parameters], then the --set overrides.
+// Builds the model of [model] and applies [parameters], then the --set overrides, then
+// [[triggers]] (config/triggers.hpp).
 std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vector<std::string>& sets = {});
 SimulationSettings simulation_settings(const Config& cfg);
 

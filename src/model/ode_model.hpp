@@ -6,8 +6,10 @@
 #include <ceres/jet.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "model/command_trigger.hpp"
 #include "model/parameters.hpp"
 
 namespace phasmid::model {
@@ -53,6 +55,10 @@ class OdeModel {
     return {};
   }
 
+  // Command times resolved from events during the run (empty: all command times fixed).
+  const std::vector<CommandTrigger>& triggers() const { return triggers_; }
+  void set_triggers(std::vector<CommandTrigger> t) { triggers_ = std::move(t); }
+
   // Bandwidth (lower, upper) of the Jacobian when states are ordered as declared; -1 if dense.
   virtual int jacobian_half_bandwidth() const { return -1; }
 
@@ -61,6 +67,7 @@ class OdeModel {
   std::vector<StateInfo> states_;
   std::vector<AngleChannel> angles_;
   ParameterSet params_;
+  std::vector<CommandTrigger> triggers_;
 };
 
 // CRTP bridge: Derived implements one `template <class T> void eval(double t, const T* y,

@@ -284,18 +284,31 @@ std::vector<double> jacobian_sparse_autodiff(const OdeModel& model, double t, co
   return J;
 }
 
-SolveResult Simulator::run(const std::vector<double>& p, const std::vector<double>& output_times,
+SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector<double>& output_times,
                            const std::vector<RootSpec>& roots, const std::vector<size_t>& sens_params) const {
   auto wall0 = std::chrono::steady_clock::now();
   const size_t n = model_.num_states();
-  if (p.size() != model_.parameters().size()) throw Error("internal: parameter vector size mismatch");
+  if (p_given.size() != model_.parameters().size()) throw Error("internal: parameter vector size mismatch");
   if (output_times.empty() || output_times.front() < 0) throw Error("output times must start at t >= 0");
   const size_t ns = sens_params.size();
+  const std::vector<model::CommandTrigger>& triggers = model_.triggers();
+  if (ns && !triggers.empty())
+    throw Error("forward sensitivities are not available with event-triggered command times ([[triggers]]): "
+                "replace the triggers by the fixed times `phasmid simulate` reports (docs/sensitivity.md)");
+  // Triggered command times are written into this copy when their events occur; until then
+  // they are "never" (no breakpoint, command off).
+  std::vector<double> p = p_given;
+  for (const auto& tr : triggers)
+    for (size_t k : tr.targets) p[k] = model::kUnresolvedMs;
+  // Each trigger watches its own threshold crossing, after the caller's roots (whose indices
+  // in SolveResult::events stay as given); crossings in both directions, for the debounce.
+  std::vector<RootSpec> all_roots = roots;
+  for (const auto& tr : triggers) all_roots.push_back({tr.state, tr.level_scale * p[tr.level_param], 0});
 
   CallbackData d;
   d.model = &model_;
   d.p = &p;
-  d.roots = &roots;
+  d.roots = &all_roots;
   d.sens_params = sens_params;
   d.n = n;
   d.yK.resize(n);
@@ -404,9 +417,9 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
     check_flag(CVodeSetSensErrCon(h.mem, options_.sensitivity_error_control ? SUNTRUE : SUNFALSE), "CVodeSetSensErrCon");
   }
   std::vector<int> dirs;
-  for (auto& r : roots) dirs.push_back(r.direction);
-  if (!roots.empty()) {
-    check_flag(CVodeRootInit(h.mem, static_cast<int>(roots.size()), root_cb), "CVodeRootInit");
+  for (auto& r : all_roots) dirs.push_back(r.direction);
+  if (!all_roots.empty()) {
+    check_flag(CVodeRootInit(h.mem, static_cast<int>(all_roots.size()), root_cb), "CVodeRootInit");
     check_flag(CVodeSetRootDirection(h.mem, dirs.data()), "CVodeSetRootDirection");
     CVodeSetNoInactiveRootWarn(h.mem);
   }
@@ -452,7 +465,13 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
   SolveResult res;
   res.n_states = n;
   res.sens_params = sens_params;
-  std::vector<int> rootsfound(roots.size());
+  std::vector<int> rootsfound(all_roots.size());
+  struct TriggerState {
+    bool fired = false;
+    int count = 0;
+    double last_crossing_ms = -INFINITY;
+  };
+  std::vector<TriggerState> trig(triggers.size());
   const bool show_progress = options_.progress && isatty(STDERR_FILENO);
   auto last_print = std::chrono::steady_clock::now();
   std::vector<double> ydot(n);
@@ -509,9 +528,42 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
     // Sensitivities are needed at events, at restarts and (if kept) at output times
     // (record_output fetches those).
     if (ns && (flag == CV_ROOT_RETURN || flag == CV_TSTOP_RETURN)) check_flag(CVodeGetSens(h.mem, &t, h.yS), "CVodeGetSens");
+    bool restart_now = false;
     if (flag == CV_ROOT_RETURN) {
       check_flag(CVodeGetRootInfo(h.mem, rootsfound.data()), "CVodeGetRootInfo");
       model_.rhs(t, N_VGetArrayPointer(h.y), p.data(), ydot.data());
+      for (size_t k = 0; k < triggers.size(); ++k) {
+        const int dir = rootsfound[roots.size() + k];
+        if (!dir) continue;
+        const model::CommandTrigger& tr = triggers[k];
+        TriggerState& st = trig[k];
+        const double previous_ms = st.last_crossing_ms;
+        st.last_crossing_ms = t;
+        if (st.fired || dir != tr.direction || t - previous_ms < tr.debounce_ms) continue;
+        const double earliest_ms = tr.after_param == model::kNoTriggerParameter ? tr.after_ms : p[tr.after_param];
+        if (earliest_ms >= model::kUnresolvedMs || t < earliest_ms) continue;
+        if (++st.count < tr.occurrence) continue;
+        st.fired = true;
+        const double when = t + tr.delay_ms;
+        for (size_t q : tr.targets) {
+          p[q] = when;
+          d.pK[q] = JetK(when);
+          d.p1[q] = Jet1(when);
+          res.commands.push_back({q, when, k});
+        }
+        if (when <= t + 1e-9 * std::max(1.0, std::abs(t))) {
+          restart_now = true;
+        } else if (when < t_end) {
+          // A later command: one more breakpoint (its time does not move with p: no dtau).
+          auto at = std::upper_bound(breaks.begin() + static_cast<long>(next_break), breaks.end() - 1, when);
+          const size_t b = static_cast<size_t>(at - breaks.begin());
+          if (!(b > next_break && std::abs(breaks[b - 1] - when) < 1e-9)) {  // not already a breakpoint
+            breaks.insert(at, when);
+            dtau.insert(dtau.begin() + static_cast<long>(b), std::vector<double>(ns, 0.0));
+            check_flag(CVodeSetStopTime(h.mem, breaks[next_break]), "CVodeSetStopTime");
+          }
+        }
+      }
       for (size_t r = 0; r < roots.size(); ++r) {
         if (!rootsfound[r]) continue;
         Event e;
@@ -527,6 +579,13 @@ SolveResult Simulator::run(const std::vector<double>& p, const std::vector<doubl
         }
         res.events.push_back(std::move(e));
       }
+    }
+    if (restart_now) {
+      // A trigger set a command time to this very event: the right-hand side changes here.
+      steps_before_restarts = total_steps();
+      accumulate_counters();
+      check_flag(CVodeReInit(h.mem, t, h.y), "CVodeReInit");
+      ++res.stats.restarts;
     }
     if (flag == CV_TSTOP_RETURN && next_break + 1 < breaks.size() && std::abs(t - breaks[next_break]) < 1e-9) {
       // The right-hand side changes here: restart the integrator from the current state.

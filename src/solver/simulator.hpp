@@ -86,6 +86,13 @@ struct SolverStats {
   double wall_seconds = 0.0;
 };
 
+// A command time resolved by a model trigger during the run (model::CommandTrigger).
+struct ResolvedCommand {
+  size_t parameter;  // index of the command-time parameter
+  double t_ms;       // the value it was given: event time + delay
+  size_t trigger;    // index into model.triggers()
+};
+
 struct SolveResult {
   std::vector<double> t;    // output times (ms)
   std::vector<double> y;    // n_out x n_states, row-major
@@ -93,6 +100,7 @@ struct SolveResult {
                             // or with SolverOptions::sensitivities_at_outputs off: see Event::s)
   std::vector<size_t> sens_params;
   std::vector<Event> events;
+  std::vector<ResolvedCommand> commands;  // in the order the triggers fired
   std::vector<long> steps_at_output;  // cumulative solver steps at each output time (diagnostics)
   SolverStats stats;
   size_t n_states = 0;
@@ -107,6 +115,10 @@ class Simulator {
   Simulator(const model::OdeModel& model, SolverOptions options = {});
   // Integrates from t = 0 with the model's initial state for parameter vector p.
   // Throws SolverError (with time and CVODES flag) when the integrator fails.
+  // The model's triggers (OdeModel::triggers) resolve their command times during the run:
+  // p's values for those parameters are ignored (see SolveResult::commands). Sensitivities
+  // with triggers are refused (Error): the triggered times' event-time sensitivities are not
+  // implemented (docs/sensitivity.md).
   SolveResult run(const std::vector<double>& p, const std::vector<double>& output_times,
                   const std::vector<RootSpec>& roots = {}, const std::vector<size_t>& sens_params = {}) const;
   const SolverOptions& options() const { return options_; }

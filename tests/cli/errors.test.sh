@@ -19,6 +19,12 @@ expect_error "missing config" "no such config" "$PHASMID" params "$tmp/missing.t
 printf '[model]\ntype = "three_legs"\ncoupling_gate = "always"\n' >"$tmp/gate.toml"
 expect_error "unknown coupling_gate names file:line and the choices" "gate.toml:3.*unknown coupling_gate 'always' (expected target_swing or source_contact)" \
   "$PHASMID" params "$tmp/gate.toml"
+printf '[model]\ntype = "three_legs"\n[[triggers]]\nset = "gait.switch_ms"\nevent = "hind.landing"\n' >"$tmp/trig.toml"
+expect_error "unknown trigger event names file:line" "trig.toml:5: unknown event 'hind.landing'" \
+  "$PHASMID" simulate "$tmp/trig.toml" -o "$tmp/e.h5" -q
+printf '[model]\ntype = "three_legs"\n[[triggers]]\nset = "gait.switch_ms"\nevent = "hind.liftoff"\n[sensitivity]\nparameters = ["middle.ctr.cpg_lev.g_app"]\n' >"$tmp/trigsens.toml"
+expect_error "forward sensitivities refused with triggers" "not available with \[\[triggers\]\]" \
+  "$PHASMID" sensitivity "$tmp/trigsens.toml" -o "$tmp/f.h5"
 expect_error "ratios bad angle" "not a number" "$PHASMID" ratios --joint fti --angles 45,x
 expect_error "solver failure is reported" "CVODES failed" \
   "$PHASMID" simulate "$SRC/configs/fti_mechanical.toml" --set middle.fti.l_E0=0.1 -o "$tmp/d.h5" -q
