@@ -88,16 +88,48 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
   m.add_modulation({L.fe.sens_exc, g_fe, {below(L.beta_state, beta_fe, L.width)}, fe_base});
   m.add_modulation({L.fe.sens_exc, g_fco, {below(L.beta_state, beta_fe, L.width), above(L.gamma_state, gamma_thr, L.width)}, g_fe});
   m.add_modulation({L.ld.sens_exc, g_cs, {after(cs_on)}, cs_base});
+  // Slope of the IN -> IN synapses (IN4 -> IN3, INCS -> IN7, IN12 -> IN11), shared by all legs.
+  const size_t in_in_gamma = def.once("syn.in_in.gamma", -0.42, "1/mV",
+                                      std::string(kChoice) + ": Table A.4 lists no IN -> IN class; slope of its excitatory IN -> CPG class (the presynaptic IN type; -10 of the CPG -> IN class unlocks the FE system at 0.5 nS)",
+                                      "slope of s_inf of the IN -> IN excitation (IN3, IN7, IN11 excited by IN4, INCS, IN12)");
   // IN12 -> IN11 (FE system, Fig. 2.13: IN11 "is excited by" IN12 and inhibits the extensor
   // CPG C5, Section 2.5.3). Table A.4 lists no class for this synapse; with the excitatory
-  // IN -> CPG class (0.1 nS) IN11 (g_L = 6.8 nS) stays at -61 mV and the FE system is not
-  // entrained by beta (docs/walking_model.md, "FE entrainment").
+  // IN -> CPG class (0.1 nS) IN11 stays at rest and the FE system is not entrained by beta.
+  // With IN11's drive of 2.0 nS (Table A.3) it needs > 1.33 nS to leave rest; 2.0 nS locks FE
+  // to LD in all legs (docs/walking_model.md, "FE entrainment", "Sensory interneurons").
   {
     SynapseIdx q = c.in_cpg_exc;
-    q.g = def(pre + "g_in12_in11", 0.5, "nS",
-              std::string(kChoice) + ": IN11 reaches its plateau while IN12 is raised; the FE system locks 1:1 to LD for 0.35-0.5 nS",
+    q.gamma = in_in_gamma;
+    q.g = def(pre + "g_in12_in11", 2.0, "nS",
+              std::string(kChoice) + ": Table A.4 lists no IN -> IN class; with IN11's Table A.3 drive of 2.0 nS the FE system locks 1:1 to LD for 1.4-10 nS (scan)",
               "maximal conductance of the IN12 -> IN11 excitation (otherwise the excitatory IN -> CPG class of Table A.4)", 0);
     m.set_synapse_params(L.fe.syn_sens, q);
+  }
+  // IN4 -> IN3 (PR): IN3 "is excited by IN4" and inhibits the protractor CPG (Sections 2.5.1,
+  // 2.5.3). The same unlisted IN -> IN synapse as IN12 -> IN11, so the same 2.0 nS: IN3 then
+  // follows IN4 (on its NaP plateau while IN4 is raised in ground contact, at rest in the
+  // swing), the gait is unchanged. With 0.1 nS IN3 stays at rest; docs/walking_model.md,
+  // "Sensory interneurons IN3, IN7, IN11".
+  {
+    SynapseIdx q = c.in_cpg_exc;
+    q.gamma = in_in_gamma;
+    q.g = def(pre + "g_in4_in3", 2.0, "nS",
+              std::string(kChoice) + ": Table A.4 lists no IN -> IN class; as g_in12_in11 (IN3 follows IN4)",
+              "maximal conductance of the IN4 (IN16) -> IN3 excitation (PR system)", 0);
+    m.set_synapse_params(L.pr.syn_sens, q);
+  }
+  // INCS -> IN7 (LD): kept at the excitatory IN -> CPG class's 0.1 nS, with which IN7 stays at
+  // rest. The CS input is tonic while walking (2.00 nS), so an excited IN7 is a tonic inhibition
+  // of the levator CPG: with 0.5 nS (IN7 drive 0.0 nS) IN7 sits on its plateau throughout, the
+  // LD period becomes 522 ms and the FE system unlocks; the LD drives (0.34 / 0.14 nS,
+  // docs/walking_model.md) were tuned without it.
+  {
+    SynapseIdx q = c.in_cpg_exc;
+    q.gamma = in_in_gamma;
+    q.g = def(pre + "g_incs_in7", 0.1, "nS",
+              std::string(kChoice) + ": Table A.4 lists no IN -> IN class; its excitatory IN -> CPG value (0.5 nS: tonic IN7, LD 522 ms)",
+              "maximal conductance of the INCS -> IN7 excitation (LD system)", 0);
+    m.set_synapse_params(L.ld.syn_sens, q);
   }
 
   if (o.ld_release_ms >= 0) {

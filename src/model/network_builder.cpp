@@ -167,7 +167,14 @@ JointNetwork add_joint_network(NetworkModel& m, const NeuronClasses& c, const st
   jn.sens_exc = nap("sens_exc", ld ? c.sens_exc_ld : c.sens_exc, ld ? 0.29 : 0.60,
                     ld ? "Knops 2013, Section 3.2 (g_app,CS before the transient)" : "Knops 2013, Section 3.2 (no sensory input)",
                     "drive of the excitatory sensory IN (IN4 / INCS / IN12)", -70, 0.9);
-  jn.sens_inh = nap("sens_inh", c.sens_inh, 0.0, kA3, "drive of the inhibitory sensory IN (IN3 / IN7 / IN11)", -70, 0.9);
+  // IN3 / IN7 / IN11 are Table A.3's "inhibitory peripheral neurons" (g_app = 0.0 nS) and also
+  // the walking network's only "inhibitory INs to CPG" (2.0 nS, E_app = -80 mV). 2.0 nS: with
+  // it IN11 still has its NaP plateau but drops off it when IN12 falls, so the FE system locks
+  // to LD for g_in12_in11 = 1.4-10 nS in the middle leg and also in the tetrapod front leg
+  // (0.0 nS: 0.35-0.5 nS, front leg creeping); docs/walking_model.md, "Sensory interneurons".
+  jn.sens_inh = nap("sens_inh", c.sens_inh, 2.0,
+                    "Knops 2013, Table A.3 ('All inhibitory INs to CPG'; the row 'Inhibitory peripheral neurons' gives 0.0 nS, docs/walking_model.md)",
+                    "drive g_app (at E_app = -80 mV) of the inhibitory sensory IN (IN3 / IN7 / IN11)", -70, 0.9);
   jn.mn_inc = m.add_motoneuron(pre + "mn_" + inc, c.mn);
   jn.mn_dec = m.add_motoneuron(pre + "mn_" + dec, c.mn);
 
