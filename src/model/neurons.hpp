@@ -89,7 +89,7 @@ void motoneuron_rhs(const MotoneuronParams<P>& q, const T* s, const T& I_syn, T*
 // The adaptation gate follows the time average of its spike-driven input, dm_q/dt =
 // r_q (q_max R - m_q) (q_max: mean of m_q,inf(V) during tonic firing at f_ref, which is
 // proportional to the rate). Computed in log space so that the far subthreshold range neither
-// underflows nor loses its derivative.
+// overflows nor loses its derivative.
 // State order: V, m_q. Uses C_m, g_q, E_q, r_q, g_L, E_L, g_app, E_app of MotoneuronParams.
 template <class T, class P>
 T motoneuron_rate(const T& V, const P& V_th, const P& width, const P& dV_ref, const P& exponent) {
@@ -98,7 +98,13 @@ T motoneuron_rate(const T& V, const P& V_th, const P& width, const P& dV_ref, co
   T z = (V - V_th) / width;
   // log(softplus(z)): z for large z, z itself (softplus ~ exp(z)) far below the onset.
   T log_sp = z > 30.0 ? T(log(z)) : (z < -30.0 ? z : T(log(log(1.0 + exp(z)))));
-  return exp(exponent * (log_sp + log(width) - log(dV_ref)));
+  T log_R = exponent * (log_sp + log(width) - log(dV_ref));
+  // Far below the onset R and dR/dV would underflow to exactly 0; the solver's Jacobian
+  // sparsity pattern is sampled numerically (src/solver/simulator.cpp), so a 0 there would
+  // drop the MN -> muscle entries. Below log R = -600 the exponent continues as
+  // -600 - log(1 + (-600 - log R)) (C1, R < 1e-260: no effect on the dynamics).
+  if (log_R < -600.0) log_R = -600.0 - log(1.0 - 600.0 - log_R);
+  return exp(log_R);
 }
 
 template <class T, class P>
