@@ -166,8 +166,10 @@ T smooth_step(const T& x, const T& width) {
 template <class T>
 void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
   constexpr double kRadToDeg = 180.0 / M_PI;
-  thread_local std::vector<T> I_syn, g_extra, tone_release;
+  // rate_mn: each rate MN's R(V), computed once for its own equation and its muscle's.
+  thread_local std::vector<T> I_syn, g_extra, tone_release, rate_mn;
   I_syn.assign(neurons_.size(), T(0.0));
+  if (rate_mn_) rate_mn.resize(neurons_.size());
   g_extra.assign(neurons_.size(), T(0.0));
   tone_release.assign(muscles_.size(), T(0.0));
 
@@ -212,8 +214,8 @@ void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
       for (int k = 0; k < 32; ++k) f[k] = p[n.mn.v[k]];
       q.g_app += g_extra[i];
       if (rate_mn_) {
-        T R = motoneuron_rate(y[n.state], p[rate_.V_th], p[rate_.width], p[rate_.dV_ref], p[rate_.exponent]);
-        rate_motoneuron_rhs(q, p[rate_.q_max], &y[n.state], I_syn[i], R, &ydot[n.state]);
+        rate_mn[i] = motoneuron_rate(y[n.state], p[rate_.V_th], p[rate_.width], p[rate_.dV_ref], p[rate_.exponent]);
+        rate_motoneuron_rhs(q, p[rate_.q_max], &y[n.state], I_syn[i], rate_mn[i], &ydot[n.state]);
       } else {
         motoneuron_rhs(q, &y[n.state], I_syn[i], &ydot[n.state]);
       }
@@ -231,8 +233,7 @@ void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
     const T& a = y[m.activation];
     const T& V = y[neurons_[m.motoneuron].state];
     if (rate_mn_) {
-      T R = motoneuron_rate(V, p[rate_.V_th], p[rate_.width], p[rate_.dV_ref], p[rate_.exponent]);
-      ydot[m.activation] = p[rate_.gain] * R * (1.0 - a) - p[act_b_] * a;
+      ydot[m.activation] = p[rate_.gain] * rate_mn[m.motoneuron] * (1.0 - a) - p[act_b_] * a;
     } else {
       T S = smooth_step(T(V - p[act_V_]), p[act_w_]);
       ydot[m.activation] = (p[act_a0_] + p[act_b_]) * S * (1.0 - a) - p[act_b_] * (1.0 - S) * a;
