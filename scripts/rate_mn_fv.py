@@ -9,7 +9,7 @@ spike-driven muscle activation of (2.83)/(2.84) and the mean m_q,inf(V), against
 ("would-be") potential Vp that the rate MN's V stands for. Then a least-squares fit of
 f = 100 Hz (softplus_w(Vp - V_th) / dV_ref)^p over the operating range Vp < -55 mV.
 
-Usage: /usr/bin/python3 scripts/rate_mn_fv.py [m_q]   (numpy only; RK4, 0.005 ms; ~3 min)
+Usage: /usr/bin/python3 scripts/rate_mn_fv.py [m_q]   (numpy only; RK4, 0.005 ms; ~3 CPU min)
 """
 import sys
 
