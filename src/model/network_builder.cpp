@@ -120,17 +120,23 @@ NeuronClasses define_neuron_classes(NetworkModel& m, MotoneuronModel mn_model) {
   size_t w = def("muscle.spike_width", 2.0, "mV", kChoice, "width of the smooth spike criterion", 1e-6);
   m.set_muscle_activation_params(a0, b, Vs, w);
   if (mn_model == MotoneuronModel::Rate) {
-    // Rate formulation (docs/model.md, "Rate motoneurons"): `phasmid fit` of the middle leg's
-    // rate model to the spiking model's gait features (configs/fit_rate_motoneuron_leg.toml,
-    // started from the single-joint calibration configs/fit_rate_motoneuron.toml).
-    const char* kRate = "phasmid fit to the spiking model, configs/fit_rate_motoneuron_leg.toml (docs/model.md)";
+    // Rate formulation (docs/model.md, "Rate motoneurons"): R(V) is the f-V relation of the
+    // Traub MN above (tonic firing at frozen m_q = 0.045 vs the passive potential, 100 Hz =
+    // R 1), q_max and gain the spike averages of (2.16) and (2.83)/(2.84) at that rate. The
+    // onset, its smoothing, the exponent and the gain are then calibrated on the spiking middle
+    // leg and tetrapod together (the network approaches threshold differently from a constant
+    // drive); V_th, width and gain stay at their f-V values, the exponent halves.
+    const char* kFV = "f-V curve of the spiking MN, scripts/rate_mn_fv.py (docs/model.md)";
+    const char* kFit = "joint fit to the spiking middle leg and tetrapod, scripts/rate_mn_joint_fit.py (docs/model.md)";
     RateMotoneuronIdx r;
-    r.V_half = def("mn.rate.V_half", -57.4317, "mV", kRate, "midpoint of the normalised firing rate R(V) of a rate MN", -70, -30);
-    r.width = def("mn.rate.width", 0.0226964, "mV", kRate, "width of the firing-rate sigmoid R(V)", 0.005, 10);
-    r.q_max = def("mn.rate.q_max", 0.0723646, "1", kRate,
-                  "adaptation drive at full rate: mean of m_q,inf(V) during tonic firing (dm_q/dt = r_q (q_max R - m_q))", 0, 1);
-    r.gain = def("muscle.rate.gain", 0.16773, "1/ms", kRate,
-                 "activation rate of the muscle at full MN rate (spike average of (2.83): da/dt = gain R (1 - a) - b a)", 0, 10);
+    r.V_th = def("mn.rate.V_th", -59.1174, "mV", kFit, "onset of repetitive firing of a rate MN (passive potential; f-V curve: -59.19 mV)", -70, -30);
+    r.width = def("mn.rate.width", 0.0014853, "mV", kFit, "smoothing of the firing onset (softplus width; f-V curve: < 0.001 mV)", 0.0005, 10);
+    r.dV_ref = def("mn.rate.dV_ref", 2.149, "mV", kFV, "depolarisation above the onset at which the MN fires at f_ref = 100 Hz (R = 1)", 0.1, 20);
+    r.exponent = def("mn.rate.exponent", 0.189499, "1", kFit, "exponent of the f-V relation R = (softplus(V - V_th)/dV_ref)^p (f-V curve: 0.37)", 0.05, 2);
+    r.q_max = def("mn.rate.q_max", 0.095, "1", kFV,
+                  "adaptation drive at f_ref: mean of m_q,inf(V) during tonic firing at 100 Hz (dm_q/dt = r_q (q_max R - m_q))", 0, 1);
+    r.gain = def("muscle.rate.gain", 0.12985, "1/ms", kFit,
+                 "muscle activation rate at f_ref (spike average of (2.83)/(2.84): da/dt = gain R (1 - a) - b a; f-V curve: 0.13)", 0, 10);
     m.set_rate_motoneurons(r);
   }
   return c;

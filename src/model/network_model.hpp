@@ -37,9 +37,10 @@ struct SynapseIdx { size_t g, V_h, gamma, E; };
 // (docs/model.md, "Rate motoneurons") without spikes: 2 states per MN instead of 5.
 enum class MotoneuronModel { Spiking, Rate };
 MotoneuronModel parse_motoneuron_model(const std::string& s);
-// Parameters of the rate formulation: firing-rate sigmoid R(V) (midpoint, width), adaptation
-// drive at full rate, muscle activation rate at full rate.
-struct RateMotoneuronIdx { size_t V_half, width, q_max, gain; };
+// Parameters of the rate formulation: f-V relation R(V) (onset, onset smoothing, depolarisation
+// above onset for the reference rate, exponent), adaptation drive and muscle activation rate
+// at the reference rate.
+struct RateMotoneuronIdx { size_t V_th, width, dV_ref, exponent, q_max, gain; };
 
 struct Neuron {
   std::string name;   // "middle.fti.cpg_flx"
@@ -165,8 +166,10 @@ T smooth_step(const T& x, const T& width) {
 template <class T>
 void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
   constexpr double kRadToDeg = 180.0 / M_PI;
-  thread_local std::vector<T> I_syn, g_extra, tone_release;
+  // rate_mn: each rate MN's R(V), computed once for its own equation and its muscle's.
+  thread_local std::vector<T> I_syn, g_extra, tone_release, rate_mn;
   I_syn.assign(neurons_.size(), T(0.0));
+  if (rate_mn_) rate_mn.resize(neurons_.size());
   g_extra.assign(neurons_.size(), T(0.0));
   tone_release.assign(muscles_.size(), T(0.0));
 
@@ -211,8 +214,8 @@ void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
       for (int k = 0; k < 32; ++k) f[k] = p[n.mn.v[k]];
       q.g_app += g_extra[i];
       if (rate_mn_) {
-        T R = motoneuron_rate(y[n.state], p[rate_.V_half], p[rate_.width]);
-        rate_motoneuron_rhs(q, p[rate_.q_max], &y[n.state], I_syn[i], R, &ydot[n.state]);
+        rate_mn[i] = motoneuron_rate(y[n.state], p[rate_.V_th], p[rate_.width], p[rate_.dV_ref], p[rate_.exponent]);
+        rate_motoneuron_rhs(q, p[rate_.q_max], &y[n.state], I_syn[i], rate_mn[i], &ydot[n.state]);
       } else {
         motoneuron_rhs(q, &y[n.state], I_syn[i], &ydot[n.state]);
       }
@@ -230,8 +233,7 @@ void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
     const T& a = y[m.activation];
     const T& V = y[neurons_[m.motoneuron].state];
     if (rate_mn_) {
-      T R = motoneuron_rate(V, p[rate_.V_half], p[rate_.width]);
-      ydot[m.activation] = p[rate_.gain] * R * (1.0 - a) - p[act_b_] * a;
+      ydot[m.activation] = p[rate_.gain] * rate_mn[m.motoneuron] * (1.0 - a) - p[act_b_] * a;
     } else {
       T S = smooth_step(T(V - p[act_V_]), p[act_w_]);
       ydot[m.activation] = (p[act_a0_] + p[act_b_]) * S * (1.0 - a) - p[act_b_] * (1.0 - S) * a;

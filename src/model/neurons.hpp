@@ -80,15 +80,31 @@ void motoneuron_rhs(const MotoneuronParams<P>& q, const T* s, const T& I_syn, T*
 
 // Rate (non-spiking) motoneuron, phasmid's reduced formulation (docs/model.md, "Rate
 // motoneurons"): the membrane equation (2.2) without the fast spike currents I_Na, I_K, so V
-// is the subthreshold ("would-be") potential set by leak, drive, synapses and adaptation; the
-// firing is a smooth normalised rate R(V) = 1 / (1 + exp(-(V - V_half) / width)) in [0, 1], and
-// the adaptation gate follows the time average of its spike-driven input: dm_q/dt =
-// r_q (q_max R - m_q) (q_max: mean of m_q,inf(V) over a cycle of tonic firing at full rate).
+// is the subthreshold ("would-be") potential set by leak, drive, synapses and adaptation. The
+// firing rate is the Traub MN's own f-V relation, normalised to f_ref = 100 Hz:
+//   R(V) = (softplus_w(V - V_th) / dV_ref)^p,   softplus_w(x) = w log(1 + exp(x / w)),
+// i.e. a class-I onset at V_th (w only smooths the corner) and a sublinear rise above it
+// (R = 1 at V_th + dV_ref). A graded rate matters because partly inhibited MNs fire at
+// 20-40 Hz (the hind depressor before its burst); a step at a single rate cannot show that.
+// The adaptation gate follows the time average of its spike-driven input, dm_q/dt =
+// r_q (q_max R - m_q) (q_max: mean of m_q,inf(V) during tonic firing at f_ref, which is
+// proportional to the rate). Computed in log space so that the far subthreshold range neither
+// overflows nor loses its derivative.
 // State order: V, m_q. Uses C_m, g_q, E_q, r_q, g_L, E_L, g_app, E_app of MotoneuronParams.
 template <class T, class P>
-T motoneuron_rate(const T& V, const P& V_half, const P& width) {
+T motoneuron_rate(const T& V, const P& V_th, const P& width, const P& dV_ref, const P& exponent) {
   using std::exp;
-  return T(1.0) / (T(1.0) + exp(-(V - V_half) / width));
+  using std::log;
+  T z = (V - V_th) / width;
+  // log(softplus(z)): z for large z, z itself (softplus ~ exp(z)) far below the onset.
+  T log_sp = z > 30.0 ? T(log(z)) : (z < -30.0 ? z : T(log(log(1.0 + exp(z)))));
+  T log_R = exponent * (log_sp + log(width) - log(dV_ref));
+  // Far below the onset R and dR/dV would underflow to exactly 0; the solver's Jacobian
+  // sparsity pattern is sampled numerically (src/solver/simulator.cpp), so a 0 there would
+  // drop the MN -> muscle entries. Below log R = -600 the exponent continues as
+  // -600 - log(1 + (-600 - log R)) (C1, R < 1e-260: no effect on the dynamics).
+  if (log_R < -600.0) log_R = -600.0 - log(1.0 - 600.0 - log_R);
+  return exp(log_R);
 }
 
 template <class T, class P>
