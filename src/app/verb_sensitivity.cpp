@@ -27,11 +27,6 @@ int run_sensitivity(const SensitivityArgs& a) {
   defaults.options.solver = sim.solver;
   auto job = sensitivity::parse_sensitivity_section(*section, *model, cfg.path, defaults);
   if (!a.method.empty()) job.options.method = sensitivity::parse_method(a.method);
-  // The event-time sensitivities of triggered command times are not implemented; central
-  // differences re-run the triggers and so include how the triggered times move.
-  if (!model->triggers().empty() && job.options.method == sensitivity::Method::Forward)
-    throw Error(cfg.path + ": forward sensitivities are not available with [[triggers]] (event-triggered command "
-                "times): use --method fd, or fixed times (the ones `phasmid simulate` prints) in [parameters]");
   job.options.solver.progress = true;
   job.options.solver.progress_label = "sensitivity";
   std::vector<double> p = model->parameters().values();

@@ -71,11 +71,21 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
   SensitivityReport rep;
   rep.method = opt.method;
   std::vector<size_t> idx;
+  // Command times set by [[triggers]] are functions of the other parameters (event time plus a
+  // delay), not free parameters: left out of "all", an error if named (docs/sensitivity.md).
+  std::vector<std::string> triggered_by(ps.size());
+  for (const auto& tr : model.triggers())
+    for (size_t q : tr.targets) triggered_by[q] = tr.event;
   if (opt.parameters.empty()) {
-    idx.resize(ps.size());
-    std::iota(idx.begin(), idx.end(), 0);
+    for (size_t k = 0; k < ps.size(); ++k)
+      if (triggered_by[k].empty()) idx.push_back(k);
   } else {
-    for (auto& name : opt.parameters) idx.push_back(ps.index(name));  // throws naming an unknown parameter
+    for (auto& name : opt.parameters) {
+      idx.push_back(ps.index(name));  // throws naming an unknown parameter
+      if (!triggered_by[idx.back()].empty())
+        throw Error("no sensitivity to " + name + ": it is set by the [[triggers]] event " + triggered_by[idx.back()] +
+                    " (give it a fixed value to differentiate by it)");
+    }
   }
   if (idx.empty()) throw Error("sensitivity analysis needs at least one parameter");
   const size_t np = idx.size(), n = model.num_states();

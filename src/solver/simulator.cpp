@@ -292,9 +292,13 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
   if (output_times.empty() || output_times.front() < 0) throw Error("output times must start at t >= 0");
   const size_t ns = sens_params.size();
   const std::vector<model::CommandTrigger>& triggers = model_.triggers();
-  if (ns && !triggers.empty())
-    throw Error("forward sensitivities are not available with event-triggered command times ([[triggers]]): "
-                "replace the triggers by the fixed times `phasmid simulate` reports (docs/sensitivity.md)");
+  // A command time set by a trigger is a function of the other parameters (the event time plus
+  // a constant delay), not a free parameter: there is no sensitivity to it.
+  for (const auto& tr : triggers)
+    for (size_t q : tr.targets)
+      if (std::find(sens_params.begin(), sens_params.end(), q) != sens_params.end())
+        throw Error("no sensitivity to " + model_.parameters().at(q).name + ": it is set by the [[triggers]] event " +
+                    tr.event + " (give it a fixed value to differentiate by it)");
   // Triggered command times are written into this copy when their events occur; until then
   // they are "never" (no breakpoint, command off).
   std::vector<double> p = p_given;
@@ -460,6 +464,19 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
     }
   }
   std::vector<double> f_before(n), f_after(n);
+  // The state is continuous at a switch; if the switch time moves with p_j the sensitivity
+  // jumps: s(tau+) = s(tau-) + (f(tau-) - f(tau+)) dtau/dp_j.
+  auto apply_jump = [&](double tau, const std::vector<double>& dtau_dp) {
+    if (std::all_of(dtau_dp.begin(), dtau_dp.end(), [](double v) { return v == 0.0; })) return;
+    const double* yv = N_VGetArrayPointer(h.y);
+    const double delta = 1e-9 * std::max(1.0, std::abs(tau));  // one-sided limits at the switch
+    model_.rhs(tau - delta, yv, p.data(), f_before.data());
+    model_.rhs(tau + delta, yv, p.data(), f_after.data());
+    for (size_t j = 0; j < ns; ++j)
+      if (dtau_dp[j] != 0.0)
+        for (size_t i = 0; i < n; ++i) NV_Ith_S(h.yS[j], i) += (f_before[i] - f_after[i]) * dtau_dp[j];
+  };
+  std::vector<double> dtau_now(ns, 0.0);  // d tau / dp of commands triggered at the current event
   check_flag(CVodeSetStopTime(h.mem, breaks[0]), "CVodeSetStopTime");
 
   SolveResult res;
@@ -529,6 +546,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
     // (record_output fetches those).
     if (ns && (flag == CV_ROOT_RETURN || flag == CV_TSTOP_RETURN)) check_flag(CVodeGetSens(h.mem, &t, h.yS), "CVodeGetSens");
     bool restart_now = false;
+    std::fill(dtau_now.begin(), dtau_now.end(), 0.0);
     if (flag == CV_ROOT_RETURN) {
       check_flag(CVodeGetRootInfo(h.mem, rootsfound.data()), "CVodeGetRootInfo");
       model_.rhs(t, N_VGetArrayPointer(h.y), p.data(), ydot.data());
@@ -545,22 +563,50 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
         if (++st.count < tr.occurrence) continue;
         st.fired = true;
         const double when = t + tr.delay_ms;
+        // d t_event / dp_j by the implicit-function theorem on g = y[state] - scale p[level]:
+        // -(s_state,j - scale [p_j is the level]) / f_state (dg/dt = 0); the delay is constant,
+        // so d tau / dp = d t_event / dp (a jump at tau, below: at once or at the added breakpoint).
+        std::vector<double> dte(ns, 0.0);
+        if (ns) {
+          const double gdot = ydot[tr.state];
+          if (gdot == 0.0 || !std::isfinite(gdot))
+            throw Error("trigger " + tr.event + " at t = " + std::to_string(t) +
+                        " ms is a tangential crossing: its time is not differentiable");
+          for (size_t j = 0; j < ns; ++j)
+            dte[j] = -(NV_Ith_S(h.yS[j], tr.state) - (sens_params[j] == tr.level_param ? tr.level_scale : 0.0)) / gdot;
+        }
         for (size_t q : tr.targets) {
           p[q] = when;
           d.pK[q] = JetK(when);
           d.p1[q] = Jet1(when);
           res.commands.push_back({q, when, k});
         }
+        // Two commands switching at one time with different d tau / dp have no single jump.
+        auto merge_dtau = [&](std::vector<double>& into) {
+          for (size_t j = 0; j < ns; ++j) {
+            if (into[j] != 0.0 && std::abs(into[j] - dte[j]) > 1e-9 * std::max(1.0, std::abs(dte[j])))
+              throw Error("trigger " + tr.event + ": its command time coincides with another switch that moves "
+                          "differently with " + model_.parameters().at(sens_params[j]).name +
+                          " (no single sensitivity jump)");
+            into[j] = dte[j];
+          }
+        };
         if (when <= t + 1e-9 * std::max(1.0, std::abs(t))) {
+          // The jump is applied after this event's sensitivities are recorded (they are s(t-)).
           restart_now = true;
+          merge_dtau(dtau_now);
         } else if (when < t_end) {
-          // A later command: one more breakpoint (its time does not move with p: no dtau).
+          // A later command: one more breakpoint. The sensitivity is continuous at the event;
+          // it jumps at tau with d tau / dp = d t_event / dp found here.
           auto at = std::upper_bound(breaks.begin() + static_cast<long>(next_break), breaks.end() - 1, when);
           const size_t b = static_cast<size_t>(at - breaks.begin());
           if (!(b > next_break && std::abs(breaks[b - 1] - when) < 1e-9)) {  // not already a breakpoint
             breaks.insert(at, when);
             dtau.insert(dtau.begin() + static_cast<long>(b), std::vector<double>(ns, 0.0));
+            merge_dtau(dtau[b]);
             check_flag(CVodeSetStopTime(h.mem, breaks[next_break]), "CVodeSetStopTime");
+          } else {
+            merge_dtau(dtau[b - 1]);
           }
         }
       }
@@ -585,26 +631,22 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
       steps_before_restarts = total_steps();
       accumulate_counters();
       check_flag(CVodeReInit(h.mem, t, h.y), "CVodeReInit");
+      if (ns) {
+        // The command switches at the event itself: s(t+) = s(t-) + (f(t-) - f(t+)) d t_event / dp.
+        apply_jump(t, dtau_now);
+        // Also needed without a jump: at a root return CVODES' own sensitivities are at its
+        // internal time beyond the root, the ones fetched above at the root.
+        check_flag(CVodeSensReInit(h.mem, options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS, h.yS), "CVodeSensReInit");
+      }
       ++res.stats.restarts;
     }
     if (flag == CV_TSTOP_RETURN && next_break + 1 < breaks.size() && std::abs(t - breaks[next_break]) < 1e-9) {
       // The right-hand side changes here: restart the integrator from the current state.
-      // Sensitivities are continuous across such fixed-time switches (the switch time does
-      // not depend on the parameters), so they are carried over unchanged.
+      // Sensitivities carry over, plus a jump if the switch time moves with p (below).
       steps_before_restarts = total_steps();
       accumulate_counters();
       check_flag(CVodeReInit(h.mem, t, h.y), "CVodeReInit");
-      if (ns) {
-        // The state is continuous; if the switch time moves with p_j the sensitivity jumps:
-        // s(tau+) = s(tau-) + (f(tau-) - f(tau+)) dtau/dp_j.
-        const double* yv = N_VGetArrayPointer(h.y);
-        const double delta = 1e-9 * std::max(1.0, std::abs(t));  // one-sided limits at the switch
-        model_.rhs(t - delta, yv, p.data(), f_before.data());
-        model_.rhs(t + delta, yv, p.data(), f_after.data());
-        for (size_t j = 0; j < ns; ++j)
-          if (dtau[next_break][j] != 0.0)
-            for (size_t i = 0; i < n; ++i) NV_Ith_S(h.yS[j], i) += (f_before[i] - f_after[i]) * dtau[next_break][j];
-      }
+      if (ns) apply_jump(t, dtau[next_break]);
       if (ns) check_flag(CVodeSensReInit(h.mem, options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS, h.yS), "CVodeSensReInit");
       ++next_break;
       check_flag(CVodeSetStopTime(h.mem, breaks[next_break]), "CVodeSetStopTime");

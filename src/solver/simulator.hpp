@@ -117,8 +117,8 @@ class Simulator {
   // Throws SolverError (with time and CVODES flag) when the integrator fails.
   // The model's triggers (OdeModel::triggers) resolve their command times during the run:
   // p's values for those parameters are ignored (see SolveResult::commands). Sensitivities
-  // with triggers are refused (Error): the triggered times' event-time sensitivities are not
-  // implemented (docs/sensitivity.md).
+  // include how the triggered times move with p (d t_event / dp at the event, a jump at the
+  // command time); a triggered command time in sens_params is an Error (docs/sensitivity.md).
   SolveResult run(const std::vector<double>& p, const std::vector<double>& output_times,
                   const std::vector<RootSpec>& roots = {}, const std::vector<size_t>& sens_params = {}) const;
   const SolverOptions& options() const { return options_; }

@@ -22,8 +22,8 @@ expect_error "unknown coupling_gate names file:line and the choices" "gate.toml:
 printf '[model]\ntype = "three_legs"\n[[triggers]]\nset = "gait.switch_ms"\nevent = "hind.landing"\n' >"$tmp/trig.toml"
 expect_error "unknown trigger event names file:line" "trig.toml:5: unknown event 'hind.landing'" \
   "$PHASMID" simulate "$tmp/trig.toml" -o "$tmp/e.h5" -q
-printf '[model]\ntype = "three_legs"\n[[triggers]]\nset = "gait.switch_ms"\nevent = "hind.liftoff"\n[sensitivity]\nparameters = ["middle.ctr.cpg_lev.g_app"]\n' >"$tmp/trigsens.toml"
-expect_error "forward sensitivities refused with triggers" "not available with \[\[triggers\]\]" \
+printf '[model]\ntype = "three_legs"\n[[triggers]]\nset = "gait.switch_ms"\nevent = "hind.liftoff"\n[sensitivity]\nparameters = ["gait.switch_ms"]\n' >"$tmp/trigsens.toml"
+expect_error "no sensitivity to a triggered command time" "no sensitivity to gait.switch_ms: it is set by the \[\[triggers\]\] event hind.liftoff" \
   "$PHASMID" sensitivity "$tmp/trigsens.toml" -o "$tmp/f.h5"
 expect_error "ratios bad angle" "not a number" "$PHASMID" ratios --joint fti --angles 45,x
 expect_error "solver failure is reported" "CVODES failed" \

@@ -287,11 +287,21 @@ TEST(GaitTransitions, MalformedTriggerErrors) {
          "bad.toml:6: 'delay_ms' must be >= 0");
 }
 
-// Forward sensitivities do not differentiate triggered times: refused, not silently wrong.
-TEST(GaitTransitions, SensitivitiesRefusedWithTriggers) {
+// Forward sensitivities differentiate triggered times (tests/sensitivity/test_trigger_sensitivity.cpp);
+// a triggered command time itself is not a free parameter: no sensitivity to it (one line
+// naming it), by the simulator as by the sensitivity analysis.
+TEST(GaitTransitions, NoSensitivityToATriggeredCommandTime) {
   auto cfg = config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/gait_tripod_to_tetrapod.toml");
   auto m = config::build_model(cfg);
   solver::Simulator sim(*m);
-  const size_t k = m->parameters().index("middle.ctr.cpg_lev.g_app");
-  EXPECT_THROW(sim.run(m->parameters().values(), {0.0, 10.0}, {}, {k}), Error);
+  const auto p = m->parameters().values();
+  EXPECT_NO_THROW(sim.run(p, {0.0, 10.0}, {}, {m->parameters().index("middle.ctr.cpg_lev.g_app")}));
+  try {
+    sim.run(p, {0.0, 10.0}, {}, {m->parameters().index("gait.switch_ms")});
+    ADD_FAILURE() << "sensitivity to a triggered command time accepted";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("no sensitivity to gait.switch_ms: it is set by the [[triggers]] event"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
 }
