@@ -28,6 +28,9 @@ NAMES = ["mn.rate.V_th", "mn.rate.width", "muscle.rate.gain", "mn.rate.exponent"
 # Start: the f-V curve of the spiking MN (scripts/rate_mn_fv.py; width: its upper bound).
 START = [-59.189, np.log10(0.001), np.log10(0.13), 0.3696]
 STEPS = [0.06, 0.2, 0.03, 0.05]
+# The parameter table's bounds (phasmid refuses values outside them): the simplex is clipped.
+LOWER = [-70.0, np.log10(0.0005), np.log10(1e-6), 0.05]
+UPPER = [-30.0, np.log10(10.0), np.log10(10.0), 2.0]
 
 
 def load(config):
@@ -83,9 +86,11 @@ if __name__ == "__main__":
     cases = [load(c) for c in CONFIGS]
     with tempfile.TemporaryDirectory() as work:
         def total(x):
+            x = np.clip(x, LOWER, UPPER)
             values = [x[0], 10 ** x[1], 10 ** x[2], x[3]]
             costs = [cost(sim, targets, values, work) for sim, targets in cases]
             print(" ".join("%.6g" % v for v in values), "costs", " ".join("%.3f" % c for c in costs), flush=True)
             return sum(costs)
         x, c = nelder_mead(total, START, STEPS, iterations)
+    x = np.clip(x, LOWER, UPPER)
     print("best:", " ".join("%s=%.6g" % nv for nv in zip(NAMES, [x[0], 10 ** x[1], 10 ** x[2], x[3]])), "sum %.3f" % c)

@@ -129,13 +129,13 @@ NeuronClasses define_neuron_classes(NetworkModel& m, MotoneuronModel mn_model) {
     const char* kFV = "f-V curve of the spiking MN, scripts/rate_mn_fv.py (docs/model.md)";
     const char* kFit = "joint fit to the spiking middle leg and tetrapod, scripts/rate_mn_joint_fit.py (docs/model.md)";
     RateMotoneuronIdx r;
-    r.V_th = def("mn.rate.V_th", -59.1174, "mV", kFit, "onset of repetitive firing of a rate MN (passive potential; f-V curve: -59.19 mV)", -70, -30);
-    r.width = def("mn.rate.width", 0.0014853, "mV", kFit, "smoothing of the firing onset (softplus width; f-V curve: < 0.001 mV)", 0.0005, 10);
+    r.V_th = def("mn.rate.V_th", -59.12, "mV", kFit, "onset of repetitive firing of a rate MN (passive potential; f-V curve: -59.19 mV)", -70, -30);
+    r.width = def("mn.rate.width", 0.0005, "mV", kFit, "smoothing of the firing onset (softplus width; f-V curve: < 0.001 mV)", 0.0005, 10);
     r.dV_ref = def("mn.rate.dV_ref", 2.149, "mV", kFV, "depolarisation above the onset at which the MN fires at f_ref = 100 Hz (R = 1)", 0.1, 20);
-    r.exponent = def("mn.rate.exponent", 0.189499, "1", kFit, "exponent of the f-V relation R = (softplus(V - V_th)/dV_ref)^p (f-V curve: 0.37)", 0.05, 2);
+    r.exponent = def("mn.rate.exponent", 0.197055, "1", kFit, "exponent of the f-V relation R = (softplus(V - V_th)/dV_ref)^p (f-V curve: 0.37)", 0.05, 2);
     r.q_max = def("mn.rate.q_max", 0.095, "1", kFV,
                   "adaptation drive at f_ref: mean of m_q,inf(V) during tonic firing at 100 Hz (dm_q/dt = r_q (q_max R - m_q))", 0, 1);
-    r.gain = def("muscle.rate.gain", 0.12985, "1/ms", kFit,
+    r.gain = def("muscle.rate.gain", 0.133599, "1/ms", kFit,
                  "muscle activation rate at f_ref (spike average of (2.83)/(2.84): da/dt = gain R (1 - a) - b a; f-V curve: 0.13)", 0, 10);
     m.set_rate_motoneurons(r);
   }

@@ -106,11 +106,13 @@ TEST(RateMotoneurons, MiddleLegAgreesWithSpikingModel) {
 TEST(RateMotoneurons, ThreeLegTetrapodAgreesWithSpikingModel) {
   // A calibration case (configs/fit_rate_motoneuron_three_legs.toml with the middle leg's,
   // scripts/rate_mn_joint_fit.py); as test_walking_three_legs: 4.5 s, features after 2.5 s,
-  // the config's 1e-6. Measured: step periods within 0.21 ms, lags within 0.001, extremal
-  // angles within 0.43 deg, duty factors front / middle / hind 0.325 / 0.347 / 0.601 vs
-  // 0.322 / 0.350 / 0.608 (the sigmoid R(V) before: hind 0.535, angles within 2.9 deg),
-  // extremum-based phase fractions within 0.018 except the middle ThC retraction fraction
-  // (0.486 vs 0.546; the three-leg joints have extra extrema per step, docs/walking_model.md).
+  // the config's 1e-6. Measured (recalibrated after the IN3/IN7/IN11 drive change, which moved
+  // the spiking front duty factor in this measure from 0.322 to 0.319 and the middle -> front
+  // lag by 0.001): step periods within 0.43 ms, lags within 0.0007 / 0.0020, extremal angles
+  // within 0.39 deg, duty factors front / middle / hind 0.325 / 0.348 / 0.602 vs 0.319 / 0.349 /
+  // 0.608 (the sigmoid R(V) before: hind 0.535, angles within 2.9 deg), extremum-based phase
+  // fractions within 0.025 except the middle ThC retraction fraction (0.487 vs 0.544; the
+  // three-leg joints have extra extrema per step, docs/walking_model.md). Tolerances 2x these.
   auto spk = walk("three_legs_tetrapod.toml", "spiking", 4500, 2500, 1e-6);
   auto rate = walk("three_legs_tetrapod.toml", "rate", 4500, 2500, 1e-6);
   for (const char* leg : {"front", "middle", "hind"}) {
@@ -125,7 +127,7 @@ TEST(RateMotoneurons, ThreeLegTetrapodAgreesWithSpikingModel) {
   }
   for (const char* leg : {"front", "middle"}) {
     const std::string d = std::string(leg) + ".duty_factor";
-    EXPECT_NEAR(rate.f.at(d), spk.f.at(d), 0.005) << d;
+    EXPECT_NEAR(rate.f.at(d), spk.f.at(d), 0.011) << d;
   }
   EXPECT_NEAR(rate.f.at("hind.duty_factor"), spk.f.at("hind.duty_factor"), 0.015);
   for (const char* f : {"front.thc.retraction", "front.ctr.levation", "front.fti.flexion", "middle.ctr.levation",
@@ -135,7 +137,7 @@ TEST(RateMotoneurons, ThreeLegTetrapodAgreesWithSpikingModel) {
   }
   EXPECT_NEAR(rate.f.at("middle.thc.retraction_fraction"), spk.f.at("middle.thc.retraction_fraction"), 0.12);
   for (const char* lag : {"phase_lag.hind_to_middle", "phase_lag.middle_to_front"})
-    EXPECT_LT(cdist(rate.f.at(lag), spk.f.at(lag)), 0.002) << lag;
+    EXPECT_LT(cdist(rate.f.at(lag), spk.f.at(lag)), 0.004) << lag;
   EXPECT_EQ(rate.f.at("gait_class"), spk.f.at("gait_class"));
   EXPECT_LT(rate.steps * 4, spk.steps);
 }
