@@ -98,9 +98,11 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
   if (!mt) throw Error(cfg.path + ": missing [model] section");
   check_keys(cfg, *mt, "model", {"type", "leg", "joint", "start_phase", "thc_table", "description",
                                   "direction_switch", "gait", "coupling", "coupling_strength", "coupling_gate",
-                                  "motoneuron"});
+                                  "motoneuron", "start_ms"});
   std::string type = text_of(cfg, *mt, "type", "");
   std::string leg = text_of(cfg, *mt, "leg", "middle");
+  if (const toml::node* n = mt->get("start_ms"); n && type != "leg")
+    throw Error(where(cfg, *n) + ": 'start_ms' applies to type = \"leg\" only (three legs start at their gait's LD start times)");
   std::string thc_table = text_of(cfg, *mt, "thc_table", "");
   if (thc_table != "" && thc_table != "A.16" && thc_table != "A.17")
     throw Error(where(cfg, *mt->get("thc_table")) + ": thc_table must be \"A.16\" or \"A.17\"");
@@ -156,6 +158,16 @@ std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vecto
       o.thc_set = thc_table;
       o.direction_switch = sw;
       o.motoneuron = mn;
+      if (const toml::node* n = mt->get("start_ms")) {
+        // The single leg's start time (docs/walking_model.md, "Start time of a single leg"):
+        // held in stance with both PR CPGs silent until then, as each leg of curve walking.
+        auto v = n->value<double>();
+        if (!v || *v < 0) throw Error(where(cfg, *n) + ": 'start_ms' must be a number >= 0 (ms)");
+        o.ld_release_ms = *v;
+        o.ld_release_source = "config start_ms (a choice: the seeds give no start phase of the single leg)";
+        o.ld_hold_g_pr = 5.0;
+        o.ld_hold_g_pr_source = "choice: PR silent until the start time, as in curve walking (Section 2.5.3: the PR is a reflex chain)";
+      }
       m = model::build_leg_model(leg, o);
     } else {
       model::ThreeLegOptions o;

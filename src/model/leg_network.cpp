@@ -227,7 +227,7 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
                        "central command: switch to backward stepping (SF off, SB on)", 0);
     size_t t_fwd = def(leg + ".command.forward_ms", kNever, "ms", "Knops 2013, Fig. 3.10 (9250 ms in middle_leg_switch.toml)",
                        "central command: back to forward stepping after backward_ms (SB off, SF on)", 0);
-    size_t t_side = def(leg + ".command.sideward_ms", kNever, "ms", "Knops 2013, Fig. 3.12 (4690 ms there; 4560 ms in middle_leg_sideward.toml, the phase that gives 102 deg here: docs/walking_model.md)",
+    size_t t_side = def(leg + ".command.sideward_ms", kNever, "ms", "Knops 2013, Fig. 3.12 (4690 ms; middle_leg_sideward.toml starts the leg at 180 ms so that it falls at the phase that gives 102 deg here: docs/walking_model.md)",
                         "central command: sideward stepping (SF and SB inhibited, FE drives changed)", 0);
     m.add_modulation({L.sf, zero, {after(t_bwd)}, drive});
     m.add_modulation({L.sb, drive, {after(t_bwd)}, zero});
