@@ -21,6 +21,8 @@ import tempfile
 import h5py
 import numpy as np
 
+from rate_mn_fv import nelder_mead  # the same simplex search as the f-V fit
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PHASMID = os.path.join(ROOT, "build", "phasmid")
 CONFIGS = ["configs/fit_rate_motoneuron_leg.toml", "configs/fit_rate_motoneuron_three_legs.toml"]
@@ -51,34 +53,6 @@ def cost(sim, targets, values, workdir):
     subprocess.run([PHASMID, "simulate", cfg, "-o", out, "-q"] + sets, check=True)
     with h5py.File(out) as f:
         return 0.5 * sum(((f["features/" + n][()] - v) / t) ** 2 for n, v, t in targets)
-
-
-def nelder_mead(f, x0, steps, iterations):
-    n = len(x0)
-    S = [np.array(x0, float)] + [np.array(x0, float) + np.eye(n)[i] * steps[i] for i in range(n)]
-    F = [f(s) for s in S]
-    for _ in range(iterations):
-        o = np.argsort(F)
-        S, F = [S[i] for i in o], [F[i] for i in o]
-        c = np.mean(S[:-1], 0)
-        xr = c + (c - S[-1])
-        fr = f(xr)
-        if fr < F[0]:
-            xe = c + 2 * (c - S[-1])
-            fe = f(xe)
-            S[-1], F[-1] = (xe, fe) if fe < fr else (xr, fr)
-        elif fr < F[-2]:
-            S[-1], F[-1] = xr, fr
-        else:
-            xc = c + 0.5 * (S[-1] - c)
-            fc = f(xc)
-            if fc < F[-1]:
-                S[-1], F[-1] = xc, fc
-            else:
-                S = [S[0]] + [S[0] + 0.5 * (s - S[0]) for s in S[1:]]
-                F = [f(s) for s in S]
-    i = int(np.argmin(F))
-    return S[i], F[i]
 
 
 if __name__ == "__main__":

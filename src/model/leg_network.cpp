@@ -92,45 +92,38 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
   const size_t in_in_gamma = def.once("syn.in_in.gamma", -0.42, "1/mV",
                                       std::string(kChoice) + ": Table A.4 lists no IN -> IN class; slope of its excitatory IN -> CPG class (the presynaptic IN type; -10 of the CPG -> IN class unlocks the FE system at 0.5 nS)",
                                       "slope of s_inf of the IN -> IN excitation (IN3, IN7, IN11 excited by IN4, INCS, IN12)");
+  // The IN -> IN excitations (Table A.4 lists no class for them): the excitatory IN -> CPG
+  // class with the IN -> IN slope and a conductance of their own.
+  auto set_in_in = [&](size_t synapse, const char* name, double g_nS, const std::string& source, const char* what) {
+    SynapseIdx q = c.in_cpg_exc;
+    q.gamma = in_in_gamma;
+    q.g = def(pre + name, g_nS, "nS", source, what, 0);
+    m.set_synapse_params(synapse, q);
+  };
   // IN12 -> IN11 (FE system, Fig. 2.13: IN11 "is excited by" IN12 and inhibits the extensor
   // CPG C5, Section 2.5.3). Table A.4 lists no class for this synapse; with the excitatory
   // IN -> CPG class (0.1 nS) IN11 stays at rest and the FE system is not entrained by beta.
   // With IN11's drive of 2.0 nS (Table A.3) it needs > 1.33 nS to leave rest; 2.0 nS locks FE
   // to LD in all legs (docs/walking_model.md, "FE entrainment", "Sensory interneurons").
-  {
-    SynapseIdx q = c.in_cpg_exc;
-    q.gamma = in_in_gamma;
-    q.g = def(pre + "g_in12_in11", 2.0, "nS",
-              std::string(kChoice) + ": Table A.4 lists no IN -> IN class; with IN11's Table A.3 drive of 2.0 nS the FE system locks 1:1 to LD for 1.4-10 nS (scan)",
-              "maximal conductance of the IN12 -> IN11 excitation (otherwise the excitatory IN -> CPG class of Table A.4)", 0);
-    m.set_synapse_params(L.fe.syn_sens, q);
-  }
+  set_in_in(L.fe.syn_sens, "g_in12_in11", 2.0,
+            std::string(kChoice) + ": Table A.4 lists no IN -> IN class; with IN11's Table A.3 drive of 2.0 nS the FE system locks 1:1 to LD for 1.4-10 nS (scan)",
+            "maximal conductance of the IN12 -> IN11 excitation (otherwise the excitatory IN -> CPG class of Table A.4)");
   // IN4 -> IN3 (PR): IN3 "is excited by IN4" and inhibits the protractor CPG (Sections 2.5.1,
   // 2.5.3). The same unlisted IN -> IN synapse as IN12 -> IN11, so the same 2.0 nS: IN3 then
   // follows IN4 (on its NaP plateau while IN4 is raised in ground contact, at rest in the
   // swing), the gait is unchanged. With 0.1 nS IN3 stays at rest; docs/walking_model.md,
   // "Sensory interneurons IN3, IN7, IN11".
-  {
-    SynapseIdx q = c.in_cpg_exc;
-    q.gamma = in_in_gamma;
-    q.g = def(pre + "g_in4_in3", 2.0, "nS",
-              std::string(kChoice) + ": Table A.4 lists no IN -> IN class; as g_in12_in11 (IN3 follows IN4)",
-              "maximal conductance of the IN4 (IN16) -> IN3 excitation (PR system)", 0);
-    m.set_synapse_params(L.pr.syn_sens, q);
-  }
+  set_in_in(L.pr.syn_sens, "g_in4_in3", 2.0,
+            std::string(kChoice) + ": Table A.4 lists no IN -> IN class; as g_in12_in11 (IN3 follows IN4)",
+            "maximal conductance of the IN4 (IN16) -> IN3 excitation (PR system)");
   // INCS -> IN7 (LD): kept at the excitatory IN -> CPG class's 0.1 nS, with which IN7 stays at
   // rest. The CS input is tonic while walking (2.00 nS), so an excited IN7 is a tonic inhibition
   // of the levator CPG: with 0.5 nS (IN7 drive 0.0 nS) IN7 sits on its plateau throughout, the
   // LD period becomes 522 ms and the FE system unlocks; the LD drives (0.34 / 0.14 nS,
   // docs/walking_model.md) were tuned without it.
-  {
-    SynapseIdx q = c.in_cpg_exc;
-    q.gamma = in_in_gamma;
-    q.g = def(pre + "g_incs_in7", 0.1, "nS",
-              std::string(kChoice) + ": Table A.4 lists no IN -> IN class; its excitatory IN -> CPG value (0.5 nS: tonic IN7, LD 522 ms)",
-              "maximal conductance of the INCS -> IN7 excitation (LD system)", 0);
-    m.set_synapse_params(L.ld.syn_sens, q);
-  }
+  set_in_in(L.ld.syn_sens, "g_incs_in7", 0.1,
+            std::string(kChoice) + ": Table A.4 lists no IN -> IN class; its excitatory IN -> CPG value (0.5 nS: tonic IN7, LD 522 ms)",
+            "maximal conductance of the INCS -> IN7 excitation (LD system)");
 
   if (o.ld_release_ms >= 0) {
     // "central inhibition of the levator CPG neuron in the respective leg, i.e. forcing the
