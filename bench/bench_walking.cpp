@@ -3,6 +3,7 @@
 // walking). Usage:
 //   bench_walking [T_END_MS=9000] [models=joint,leg,three] [dense|band|klu|auto]
 //                 [motoneurons=spiking,rate] [RTOL=1e-6] [kernels=phasmid[,sundials]]
+//                 [integration=parts[,whole]]
 // Prints one line per model and motoneuron formulation (Hodgkin-Huxley "spiking" MNs or the
 // "rate" formulation, docs/model.md): states, simulated ms, wall s, steps, RHS and Jacobian
 // evaluations, the ratio to the 2013 time scaled to the simulated duration, and gait features
@@ -10,7 +11,10 @@
 // period (the FTi joint's; the middle leg's step period for leg and three legs), for the
 // three legs the lags hind->middle and middle->front (in periods). `kernels=phasmid,sundials`
 // adds a row per model with Debian's own (unoptimised) SUNDIALS vector/matrix kernels, the
-// baseline of solver/serial_kernels.hpp. Times are the best of BENCH_REPEATS (default 3) runs.
+// baseline of solver/serial_kernels.hpp. `integration=parts,whole` adds a row per model
+// integrated as one system ("[whole]", SolverOptions::partitioned = false), the baseline of
+// the partitioned integration (solver/partitioned_simulator.hpp; the single joint is one part
+// either way). Times are the best of BENCH_REPEATS (default 3) runs.
 // Environment: BENCH_MAXORD=q limits the BDF order,
 // BENCH_STALD=1 switches on CVODES' stability limit detection (both measured, not adopted).
 #include <algorithm>
@@ -35,6 +39,7 @@ int main(int argc, char** argv) {
   const std::string ls = argc > 3 ? argv[3] : "auto";
   const std::string formulations = argc > 4 ? argv[4] : "spiking,rate";
   const std::string kernels = argc > 6 ? argv[6] : "phasmid";
+  const std::string integrations = argc > 7 ? argv[7] : "parts";
   const int repeats = std::getenv("BENCH_REPEATS") ? std::max(1, std::atoi(std::getenv("BENCH_REPEATS"))) : 3;
   solver::SolverOptions so;
   so.rtol = so.atol = argc > 5 ? std::atof(argv[5]) : 1e-6;  // default: the three-leg configs' tolerance
@@ -57,8 +62,11 @@ int main(int argc, char** argv) {
   for (const Case& c : cases) {
     if (which.find(c.key) == std::string::npos) continue;
     for (const char* form : {"spiking", "rate"})
-    for (const char* kern : {"phasmid", "sundials"}) {
-      if (formulations.find(form) == std::string::npos || kernels.find(kern) == std::string::npos) continue;
+    for (const char* kern : {"phasmid", "sundials"})
+    for (const char* integ : {"parts", "whole"}) {
+      if (formulations.find(form) == std::string::npos || kernels.find(kern) == std::string::npos ||
+          integrations.find(integ) == std::string::npos)
+        continue;
       const model::MotoneuronModel mn = model::parse_motoneuron_model(form);
       std::unique_ptr<model::NetworkModel> m;
       if (std::string(c.key) == "joint") {
@@ -75,6 +83,7 @@ int main(int argc, char** argv) {
       }
       solver::SolverOptions sok = so;
       if (std::string(kern) == "sundials") sok.vector_kernels = solver::VectorKernels::Sundials;
+      sok.partitioned = std::string(integ) == "parts";
       solver::Simulator sim(*m, sok);
       // Best of `repeats` runs: single timings on this VM scatter by up to 1.7x (docs/benchmarks.md).
       double wall = 1e300, cpu = 1e300;
@@ -92,7 +101,8 @@ int main(int argc, char** argv) {
       std::map<std::string, double> f;
       for (auto& x : features::compute_features(*m, r, fo)) f[x.name] = x.value;
       auto get = [&](const char* k) { return f.count(k) ? f[k] : NAN; };
-      const std::string label = std::string(c.label) + " " + form + (std::string(kern) == "sundials" ? " [sun]" : "");
+      const std::string label = std::string(c.label) + " " + form + (std::string(kern) == "sundials" ? " [sun]" : "") +
+                                (std::string(integ) == "whole" ? " [whole]" : "");
       std::printf("%-38s %7zu %8.0f %8.2f %8.2f %8ld %9ld %7ld %14.1f %8.3f %8.1f %7.3f %7.3f\n", label.c_str(),
                   m->num_states(), t_end, wall, cpu, r.stats.steps, r.stats.rhs_evals, r.stats.jac_evals, ref, wall / ref,
                   f.count("middle.step_period_ms") ? f["middle.step_period_ms"] : get("period_ms"), get("phase_lag.hind_to_middle"), get("phase_lag.middle_to_front"));

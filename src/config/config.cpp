@@ -222,7 +222,8 @@ SimulationSettings simulation_settings(const Config& cfg) {
   SimulationSettings s;
   const toml::table* st = cfg.table["simulation"].as_table();
   if (!st) return s;
-  check_keys(cfg, *st, "simulation", {"t_end_ms", "output_dt_ms", "discard_ms", "rtol", "atol", "linear_solver", "max_step_ms"});
+  check_keys(cfg, *st, "simulation", {"t_end_ms", "output_dt_ms", "discard_ms", "rtol", "atol", "linear_solver", "max_step_ms",
+                                              "partitioned"});
   auto get = [&](const char* key, double& out, double lo) {
     if (const toml::node* n = st->get(key)) {
       out = number(cfg, *n, key);
@@ -246,6 +247,10 @@ SimulationSettings simulation_settings(const Config& cfg) {
     else if (v == "band") s.solver.linear_solver = solver::LinearSolverKind::Band;
     else if (v == "klu") s.solver.linear_solver = solver::LinearSolverKind::Klu;
     else throw Error(where(cfg, *n) + ": linear_solver must be \"auto\", \"dense\", \"band\" or \"klu\"");
+  }
+  if (const toml::node* n = st->get("partitioned")) {
+    if (!n->is_boolean()) throw Error(where(cfg, *n) + ": 'partitioned' must be true or false");
+    s.solver.partitioned = n->value<bool>().value_or(true);
   }
   return s;
 }

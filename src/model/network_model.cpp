@@ -13,6 +13,7 @@ size_t NetworkModel::add_nap_neuron(const std::string& name, const NapIdx& q, do
   y0_.push_back(V0);
   y0_.push_back(h0);
   neurons_.push_back(n);
+  all_.neurons.push_back(neurons_.size() - 1);
   return neurons_.size() - 1;
 }
 
@@ -27,6 +28,7 @@ size_t NetworkModel::add_motoneuron(const std::string& name, const MotoneuronIdx
     for (double v : {-65.0, 0.02, 0.98, 0.05, 0.0}) y0_.push_back(v);
   }
   neurons_.push_back(n);
+  all_.neurons.push_back(neurons_.size() - 1);
   return neurons_.size() - 1;
 }
 
@@ -40,6 +42,7 @@ size_t NetworkModel::add_muscle(size_t motoneuron, size_t k_rest, size_t k_activ
   size_t a = add_state(name + ".activation", "1");
   y0_.push_back(0.0);
   muscles_.push_back({motoneuron, a, k_rest, k_active});
+  all_.muscles.push_back(muscles_.size() - 1);
   return muscles_.size() - 1;
 }
 
@@ -54,6 +57,7 @@ size_t NetworkModel::add_joint(const std::string& leg, const JointMechanics& mec
                       "initial joint angle", -180, 180});
   joints_.push_back({mech, leg, a, w, muscle_inc, muscle_dec, a0});
   angles_.push_back({leg, joint_name(mech.type), a, w});
+  all_.joints.push_back(joints_.size() - 1);
   return joints_.size() - 1;
 }
 
@@ -78,6 +82,107 @@ std::vector<double> NetworkModel::breakpoints(const std::vector<double>& p, doub
   std::sort(b.begin(), b.end());
   b.erase(std::unique(b.begin(), b.end()), b.end());
   return b;
+}
+
+namespace {
+// Union-find over state indices.
+struct DisjointSets {
+  std::vector<size_t> parent;
+  explicit DisjointSets(size_t n) : parent(n) {
+    for (size_t i = 0; i < n; ++i) parent[i] = i;
+  }
+  size_t find(size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void join(size_t a, size_t b) { parent[find(a)] = find(b); }
+};
+
+// The NetworkModel's equations restricted to one part.
+class NetworkPart final : public OdeModelPart {
+ public:
+  NetworkPart(const NetworkModel& m, NetworkComponents c) : model_(m), comp_(std::move(c)) {}
+  void rhs(double t, const double* y, const double* p, double* ydot) const override {
+    model_.eval_components(comp_, t, y, p, ydot);
+  }
+  void rhs(double t, const JetK* y, const JetK* p, JetK* ydot) const override {
+    model_.eval_components(comp_, t, y, p, ydot);
+  }
+
+ private:
+  const NetworkModel& model_;
+  NetworkComponents comp_;
+};
+}  // namespace
+
+size_t NetworkModel::neuron_state_count(const Neuron& n) const {
+  return n.motoneuron && !rate_mn_ ? 5 : 2;
+}
+
+size_t NetworkModel::modulation_target_state(const Modulation& m) const {
+  return m.target == Modulation::RestTone ? muscles_[m.neuron].activation : neurons_[m.neuron].state;
+}
+
+ModelPartition NetworkModel::partition() const {
+  const size_t n = num_states();
+  DisjointSets sets(n);
+  for (const Neuron& nr : neurons_)
+    for (size_t k = 1; k < neuron_state_count(nr); ++k) sets.join(nr.state, nr.state + k);
+  for (const Synapse& s : synapses_) {
+    sets.join(neurons_[s.pre].state, neurons_[s.post].state);
+    if (s.gate.neuron != kNoIndex) sets.join(neurons_[s.gate.neuron].state, neurons_[s.post].state);
+  }
+  for (const Muscle& m : muscles_) sets.join(m.activation, neurons_[m.motoneuron].state);
+  for (const Joint& j : joints_) {
+    sets.join(j.angle_state, j.velocity_state);
+    sets.join(j.angle_state, muscles_[j.muscle_inc].activation);
+    sets.join(j.angle_state, muscles_[j.muscle_dec].activation);
+  }
+  // Parts numbered in the order of their first state.
+  ModelPartition P;
+  std::vector<size_t> part_of_root(n, kNoIndex), part_of(n);
+  for (size_t i = 0; i < n; ++i) {
+    size_t& k = part_of_root[sets.find(i)];
+    if (k == kNoIndex) {
+      k = P.states.size();
+      P.states.emplace_back();
+    }
+    part_of[i] = k;
+    P.states[k].push_back(i);
+  }
+  P.inputs.assign(P.size(), {});
+  P.names.assign(P.size(), "");
+  for (const Modulation& m : modulations_) {
+    const size_t k = part_of[modulation_target_state(m)];
+    for (const Condition& c : m.conditions)
+      if ((c.kind == Condition::AngleBelow || c.kind == Condition::AngleAbove) && part_of[c.angle_state] != k &&
+          std::find(P.inputs[k].begin(), P.inputs[k].end(), c.angle_state) == P.inputs[k].end())
+        P.inputs[k].push_back(c.angle_state);
+  }
+  for (const Joint& j : joints_) {
+    std::string& name = P.names[part_of[j.angle_state]];
+    name += (name.empty() ? "" : "+") + j.mech.prefix;
+  }
+  for (size_t k = 0; k < P.size(); ++k)
+    if (P.names[k].empty()) P.names[k] = states_[P.states[k].front()].name;
+  return P;
+}
+
+std::unique_ptr<OdeModelPart> NetworkModel::make_part(const ModelPartition& P, size_t k) const {
+  std::vector<char> mine(num_states(), 0);
+  for (size_t i : P.states.at(k)) mine[i] = 1;
+  NetworkComponents c;
+  for (size_t i = 0; i < synapses_.size(); ++i)
+    if (mine[neurons_[synapses_[i].post].state]) c.synapses.push_back(i);
+  for (size_t i = 0; i < modulations_.size(); ++i)
+    if (mine[modulation_target_state(modulations_[i])]) c.modulations.push_back(i);
+  for (size_t i = 0; i < neurons_.size(); ++i)
+    if (mine[neurons_[i].state]) c.neurons.push_back(i);
+  for (size_t i = 0; i < muscles_.size(); ++i)
+    if (mine[muscles_[i].activation]) c.muscles.push_back(i);
+  for (size_t i = 0; i < joints_.size(); ++i)
+    if (mine[joints_[i].angle_state]) c.joints.push_back(i);
+  return std::make_unique<NetworkPart>(*this, std::move(c));
 }
 
 }  // namespace phasmid::model

@@ -106,6 +106,13 @@ struct Joint {
   size_t angle0;                  // parameter: initial angle (deg)
 };
 
+// The components whose equations one evaluation covers: all of them, or one part of a
+// ModelPartition (synapses by postsynaptic neuron, modulations by target, muscles by
+// activation state, joints by angle state).
+struct NetworkComponents {
+  std::vector<size_t> synapses, modulations, neurons, muscles, joints;
+};
+
 class NetworkModel : public OdeModelT<NetworkModel> {
  public:
   explicit NetworkModel(std::string kind) : kind_(std::move(kind)) {}
@@ -120,13 +127,17 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   size_t add_motoneuron(const std::string& name, const MotoneuronIdx& q);
   size_t add_synapse(size_t pre, size_t post, const SynapseIdx& q, PresynapticGate gate = {}) {
     synapses_.push_back({pre, post, q, gate});
+    all_.synapses.push_back(synapses_.size() - 1);
     return synapses_.size() - 1;
   }
   void set_synapse_gate(size_t synapse, PresynapticGate gate) { synapses_.at(synapse).gate = gate; }
   void set_synapse_params(size_t synapse, const SynapseIdx& q) { synapses_.at(synapse).q = q; }
   const std::vector<Synapse>& synapses() const { return synapses_; }
   const std::vector<Modulation>& modulations() const { return modulations_; }
-  void add_modulation(Modulation m) { modulations_.push_back(std::move(m)); }
+  void add_modulation(Modulation m) {
+    modulations_.push_back(std::move(m));
+    all_.modulations.push_back(modulations_.size() - 1);
+  }
   size_t add_muscle(size_t motoneuron, size_t k_rest, size_t k_active, const std::string& name);
   size_t add_joint(const std::string& leg, const JointMechanics& mech, size_t muscle_inc, size_t muscle_dec,
                    double angle0_deg);
@@ -140,17 +151,29 @@ class NetworkModel : public OdeModelT<NetworkModel> {
 
   std::vector<double> initial_state(const std::vector<double>& p) const override;
   std::vector<double> breakpoints(const std::vector<double>& p, double t_end) const override;
+  // Parts = the joints' networks: states joined by synapses, presynaptic gates, motoneuron ->
+  // muscle -> joint; the sensory and intersegmental modulations (sigmoids of joint angles)
+  // are the couplings between parts.
+  ModelPartition partition() const override;
+  std::unique_ptr<OdeModelPart> make_part(const ModelPartition& partition, size_t k) const override;
 
   template <class T>
-  void eval(double t, const T* y, const T* p, T* ydot) const;
+  void eval(double t, const T* y, const T* p, T* ydot) const { eval_components(all_, t, y, p, ydot); }
+  // The equations of the given components only (ydot written at their states).
+  template <class T>
+  void eval_components(const NetworkComponents& c, double t, const T* y, const T* p, T* ydot) const;
 
  private:
+  size_t neuron_state_count(const Neuron& n) const;
+  size_t modulation_target_state(const Modulation& m) const;
+
   std::string kind_;
   std::vector<Neuron> neurons_;
   std::vector<Synapse> synapses_;
   std::vector<Modulation> modulations_;
   std::vector<Muscle> muscles_;
   std::vector<Joint> joints_;
+  NetworkComponents all_;   // every component, in the order added
   std::vector<double> y0_;  // default initial state of neurons and muscles
   size_t act_a0_ = 0, act_b_ = 0, act_V_ = 0, act_w_ = 0;
   bool rate_mn_ = false;
@@ -164,16 +187,20 @@ T smooth_step(const T& x, const T& width) {
 }
 
 template <class T>
-void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
+void NetworkModel::eval_components(const NetworkComponents& comp, double t, const T* y, const T* p, T* ydot) const {
   constexpr double kRadToDeg = 180.0 / M_PI;
   // rate_mn: each rate MN's R(V), computed once for its own equation and its muscle's.
+  // Only the entries of comp's neurons and muscles are used (synapses and modulations target them).
   thread_local std::vector<T> I_syn, g_extra, tone_release, rate_mn;
-  I_syn.assign(neurons_.size(), T(0.0));
+  I_syn.resize(neurons_.size());
+  g_extra.resize(neurons_.size());
   if (rate_mn_) rate_mn.resize(neurons_.size());
-  g_extra.assign(neurons_.size(), T(0.0));
-  tone_release.assign(muscles_.size(), T(0.0));
+  tone_release.resize(muscles_.size());
+  for (size_t i : comp.neurons) I_syn[i] = g_extra[i] = T(0.0);
+  for (size_t i : comp.muscles) tone_release[i] = T(0.0);
 
-  for (const Synapse& s : synapses_) {
+  for (size_t si : comp.synapses) {
+    const Synapse& s = synapses_[si];
     const T& V_pre = y[neurons_[s.pre].state];
     const T& V_post = y[neurons_[s.post].state];
     if (s.gate.neuron == kNoIndex) {
@@ -184,7 +211,8 @@ void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
       I_syn[s.post] += synaptic_current(T(p[s.q.g] * open), p[s.q.V_h], p[s.q.gamma], p[s.q.E], V_pre, V_post);
     }
   }
-  for (const Modulation& m : modulations_) {
+  for (size_t mi : comp.modulations) {
+    const Modulation& m = modulations_[mi];
     T gate(1.0);
     for (const Condition& c : m.conditions) {
       switch (c.kind) {
@@ -206,7 +234,7 @@ void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
     if (m.reference == kNoIndex) target[m.neuron] += p[m.delta] * gate;
     else target[m.neuron] += (p[m.delta] - p[m.reference]) * gate;
   }
-  for (size_t i = 0; i < neurons_.size(); ++i) {
+  for (size_t i : comp.neurons) {
     const Neuron& n = neurons_[i];
     if (n.motoneuron) {
       MotoneuronParams<T> q;
@@ -229,7 +257,8 @@ void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
   }
   // Spike-driven activation, eqs. (2.83)/(2.84) in terms of a = (k - k_rest)/(k_active - k_rest);
   // rate formulation: its average over the spikes, da/dt = gain R(V) (1 - a) - b a.
-  for (const Muscle& m : muscles_) {
+  for (size_t mi : comp.muscles) {
+    const Muscle& m = muscles_[mi];
     const T& a = y[m.activation];
     const T& V = y[neurons_[m.motoneuron].state];
     if (rate_mn_) {
@@ -239,7 +268,8 @@ void NetworkModel::eval(double t, const T* y, const T* p, T* ydot) const {
       ydot[m.activation] = (p[act_a0_] + p[act_b_]) * S * (1.0 - a) - p[act_b_] * (1.0 - S) * a;
     }
   }
-  for (const Joint& j : joints_) {
+  for (size_t ji : comp.joints) {
+    const Joint& j = joints_[ji];
     const Muscle& mi = muscles_[j.muscle_inc];
     const Muscle& md = muscles_[j.muscle_dec];
     const T &a_inc = y[mi.activation], &a_dec = y[md.activation];

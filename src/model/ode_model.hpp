@@ -5,6 +5,7 @@
 // Jet<kJacobianChunk> (Jacobian columns in chunks). Time is in ms throughout.
 #include <ceres/jet.h>
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,6 +18,25 @@ namespace phasmid::model {
 constexpr int kJacobianChunk = 8;
 using Jet1 = ceres::Jet<double, 1>;
 using JetK = ceres::Jet<double, kJacobianChunk>;
+
+// Partitioned integration (solver/partitioned_simulator.hpp): the states split into parts
+// that read each other only through slowly varying states (joint angles), so that each part
+// can be integrated on its own step size with the others' angles interpolated.
+struct ModelPartition {
+  std::vector<std::vector<size_t>> states;  // per part: its states (global indices, ascending)
+  std::vector<std::vector<size_t>> inputs;  // per part: states of other parts its equations read
+  std::vector<std::string> names;           // per part: a label for messages ("middle.fti")
+  size_t size() const { return states.size(); }
+};
+
+// The equations of one part: reads a full-size state vector (only the part's own states and
+// its inputs need to be valid) and writes ydot only at the part's own states.
+class OdeModelPart {
+ public:
+  virtual ~OdeModelPart() = default;
+  virtual void rhs(double t, const double* y, const double* p, double* ydot) const = 0;
+  virtual void rhs(double t, const JetK* y, const JetK* p, JetK* ydot) const = 0;
+};
 
 struct StateInfo {
   std::string name;  // e.g. "middle.fti.gamma", "middle.fti.cpg_ext.V"
@@ -61,6 +81,14 @@ class OdeModel {
 
   // Bandwidth (lower, upper) of the Jacobian when states are ordered as declared; -1 if dense.
   virtual int jacobian_half_bandwidth() const { return -1; }
+
+  // The model's parts for partitioned integration (empty: the model cannot be partitioned)
+  // and the equations of part k of that partition.
+  virtual ModelPartition partition() const { return {}; }
+  virtual std::unique_ptr<OdeModelPart> make_part(const ModelPartition& partition, size_t k) const {
+    (void)partition; (void)k;
+    return nullptr;
+  }
 
  protected:
   size_t add_state(std::string name, std::string unit);

@@ -22,6 +22,7 @@
 
 #include "common/error.hpp"
 #include "solver/matrix_kernels.hpp"
+#include "solver/partitioned_simulator.hpp"
 #include "solver/serial_kernels.hpp"
 
 namespace phasmid::solver {
@@ -292,6 +293,10 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
   if (output_times.empty() || output_times.front() < 0) throw Error("output times must start at t >= 0");
   const size_t ns = sens_params.size();
   const std::vector<model::CommandTrigger>& triggers = model_.triggers();
+  if (options_.partitioned && ns == 0 && triggers.empty()) {
+    const model::ModelPartition parts = model_.partition();
+    if (parts.size() > 1) return run_partitioned(model_, parts, options_, p_given, output_times, roots);
+  }
   // A command time set by a trigger is a function of the other parameters (the event time plus
   // a constant delay), not a free parameter: there is no sensitivity to it.
   for (const auto& tr : triggers)

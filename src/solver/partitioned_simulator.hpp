@@ -1,0 +1,32 @@
+#pragma once
+// Partitioned (multirate) integration of a plain run: one CVODES integrator per part of the
+// model (model::ModelPartition: for the walking networks, one joint's CPGs, interneurons,
+// motoneurons, muscles and mechanics), each on its own step size. Parts read each other only
+// through joint angles (the sensory and intersegmental sigmoids), which a part takes from the
+// other part's interpolating polynomial of its last step (CVodeGetDky: the Nordsieck
+// polynomial, extrapolated over at most one step of the reading part).
+//
+// Why: one integrator for the whole body steps at the pace of the fastest event in any joint
+// (a half-centre switch, a motoneuron spike), so its step count grows with the number of
+// joints and each step costs the whole system. Parts step only for their own events.
+//
+// Scheduling keeps the extrapolation short and the interpolation valid: the part that lags
+// furthest behind takes the next step, so every other part's last step covers the lagging
+// part's current time. Central commands (model breakpoints) are synchronisation points where
+// all parts restart together. Events (roots) belong to the part owning the root's state; the
+// other parts' states at the event are interpolated once they have passed its time.
+//
+// Not for forward sensitivities or [[triggers]] (Simulator::run then integrates the whole
+// model as one system); docs/benchmarks.md compares the two.
+#include <vector>
+
+#include "model/ode_model.hpp"
+#include "solver/simulator.hpp"
+
+namespace phasmid::solver {
+
+SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPartition& partition,
+                            const SolverOptions& options, const std::vector<double>& p,
+                            const std::vector<double>& output_times, const std::vector<RootSpec>& roots);
+
+}  // namespace phasmid::solver
