@@ -55,7 +55,9 @@ int run_simulate(const SimulateArgs& a) {
   if (!a.quiet) report_triggers(*model, r);
   if (!a.quiet)
     std::cerr << "phasmid simulate: " << model->num_states() << " states, " << s.t_end_ms << " ms in "
-              << r.stats.wall_seconds << " s -> " << out << "\n";
+              << r.stats.wall_seconds << " s"
+              << (r.stats.integrators > 1 ? " (" + std::to_string(r.stats.integrators) + " joint integrators)" : "")
+              << " -> " << out << "\n";
   return 0;
 }
 

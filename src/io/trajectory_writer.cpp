@@ -83,6 +83,7 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
   }
   w.set_attribute("/trajectory", "solver_steps", static_cast<double>(r.stats.steps));
   w.set_attribute("/trajectory", "wall_seconds", r.stats.wall_seconds);
+  w.set_attribute("/trajectory", "integrators", static_cast<double>(r.stats.integrators));
 }
 
 void write_parameters(H5Writer& w, const model::OdeModel& m, const std::vector<double>& p) {

@@ -308,12 +308,14 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
   };
   // Writes part `ps`'s states at time t (within its last step) into row `row` of `dst`.
   auto write_states = [&](PartSolver& ps, double t, double* row) {
-    if (CVodeGetDky(ps.mem, t, 0, ps.tmp) < 0) {
-      double tn = 0, hu = 0;
+    if (CVodeGetDky(ps.mem, t, 0, ps.tmp) < 0) {  // the scheduling guarantees t is in the last step
+      double tn = 0.0, hu = 0.0;
       CVodeGetCurrentTime(ps.mem, &tn);
       CVodeGetLastStep(ps.mem, &hu);
-      std::fprintf(stderr, "DKY fail part %s t=%.17g tn=%.17g hu=%g ps.t=%.17g\n", ps.name.c_str(), t, tn, hu, ps.t);
-      check(-25, "CVodeGetDky");
+      std::ostringstream os;
+      os << "internal: part " << ps.name << " cannot interpolate at t = " << t << " ms (last step " << tn - hu
+         << " .. " << tn << " ms); set [simulation] partitioned = false";
+      throw SolverError(os.str());
     }
     for (size_t i = 0; i < ps.states.size(); ++i) row[ps.states[i]] = NV_Ith_S(ps.tmp, i);
   };
@@ -426,6 +428,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
     res.stats.newton_failures += c.newton_failures;
     res.stats.linear_setups += c.linear_setups;
   }
+  res.stats.integrators = static_cast<long>(run.parts.size());
   res.stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return res;
 }

@@ -86,6 +86,7 @@ struct SolverStats {
   // Over the whole run (CVodeReInit at breakpoints resets CVODES' own counters): error-test
   // failures, Newton iterations and convergence failures, linear-solver setups.
   long error_test_failures = 0, newton_iterations = 0, newton_failures = 0, linear_setups = 0;
+  long integrators = 1;  // parts integrated separately (SolverOptions::partitioned), 1: one system
   double wall_seconds = 0.0;
 };
 
