@@ -60,6 +60,7 @@ struct PartSolver {
 
   double t = 0.0;        // time reached (CVODES' internal tn)
   size_t next_out = 0;   // first output time not yet written
+  long steps_since_output = 0;  // against SolverOptions::max_steps (per output interval)
   std::vector<size_t> roots;          // global root indices watched by this part
   std::vector<size_t> root_state;     // their local state indices
   std::vector<size_t> pending_events; // events whose state this part has not yet passed
@@ -343,9 +344,12 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
     PartSolver& ps = *lag;
     double tret = ps.t;
     const int flag = CVode(ps.mem, breaks[next_break], ps.y, &tret, CV_ONE_STEP);
-    if (flag < 0) {
+    // CV_ONE_STEP never reports CV_TOO_MUCH_WORK: the same limit per output interval here.
+    const bool too_much_work = ++ps.steps_since_output > options.max_steps;
+    if (flag < 0 || too_much_work) {
       std::ostringstream os;
-      os << "CVODES failed at t = " << tret << " ms in part " << ps.name << ": " << CVodeGetReturnFlagName(flag)
+      os << "CVODES failed at t = " << tret << " ms in part " << ps.name << ": "
+         << (too_much_work ? "CV_TOO_MUCH_WORK" : CVodeGetReturnFlagName(flag))
          << " (try --set on the offending parameter, tighter tolerances, or partitioned = false)";
       throw SolverError(os.str());
     }
@@ -386,6 +390,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
     // Outputs and pending event states up to the time reached.
     while (ps.next_out < n_out && output_times[ps.next_out] <= ps.t) {
       const size_t k = ps.next_out++;
+      ps.steps_since_output = 0;
       write_states(ps, output_times[k], &res.y[k * n]);
       if (++parts_done[k] == run.parts.size()) res.steps_at_output[k] = total_steps();
     }

@@ -14,6 +14,7 @@
 #include "features/features.hpp"
 #include "model/leg_network.hpp"
 #include "model/network_builder.hpp"
+#include "common/error.hpp"
 #include "solver/simulator.hpp"
 
 using namespace phasmid;
@@ -171,4 +172,22 @@ TEST(PartitionedSimulator, ConvergesAcrossCentralCommands) {
   m->parameters().set("middle.command.backward_ms", 1500.0);
   ASSERT_EQ(m->breakpoints(m->parameters().values(), 3000.0).size(), 2u);  // CS on at 200 ms, backward
   expect_converges_like_whole(*m, 3000.0, true);
+}
+
+// A run that needs more steps than SolverOptions::max_steps between two outputs fails with a
+// message naming the part, as the whole-system integrator does (CV_ONE_STEP would not).
+TEST(PartitionedSimulator, StepLimitNamesThePart) {
+  model::ThreeLegOptions t;
+  t.motoneuron = model::MotoneuronModel::Rate;
+  auto m = model::build_three_leg_model(t);
+  solver::SolverOptions o;
+  o.rtol = o.atol = 1e-6;
+  o.max_steps = 20;
+  try {
+    solver::Simulator(*m, o).run(m->parameters().values(), solver::output_grid(500.0, 250.0));
+    FAIL() << "expected a SolverError";
+  } catch (const SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("CV_TOO_MUCH_WORK"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(" in part "), std::string::npos) << e.what();
+  }
 }
