@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "solver/cvodes_counters.hpp"
 #include "solver/matrix_kernels.hpp"
 #include "solver/serial_kernels.hpp"
 
@@ -102,20 +103,10 @@ struct PartSolver {
   }
 
   void add_counters() {
-    using Getter = int (*)(void*, long*);
-    const std::pair<Getter, long SolverStats::*> list[] = {
-        {CVodeGetNumSteps, &SolverStats::steps},
-        {CVodeGetNumErrTestFails, &SolverStats::error_test_failures},
-        {CVodeGetNumNonlinSolvIters, &SolverStats::newton_iterations},
-        {CVodeGetNumNonlinSolvConvFails, &SolverStats::newton_failures},
-        {CVodeGetNumLinSolvSetups, &SolverStats::linear_setups},
-        {CVodeGetNumRhsEvals, &SolverStats::rhs_evals},
-        {CVodeGetNumJacEvals, &SolverStats::jac_evals}};
-    for (const auto& [get, field] : list) {
-      long v = 0;
-      get(mem, &v);
-      counters.*field += v;
-    }
+    long s = 0;
+    CVodeGetNumSteps(mem, &s);
+    counters.steps += s;
+    add_cvodes_counters(mem, counters);
   }
   long total_steps() const {
     long v = 0;

@@ -21,6 +21,7 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "solver/cvodes_counters.hpp"
 #include "solver/matrix_kernels.hpp"
 #include "solver/partitioned_simulator.hpp"
 #include "solver/serial_kernels.hpp"
@@ -500,21 +501,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
 
   long steps_before_restarts = 0;  // CVodeReInit resets the step counter
   // Adds CVODES' counters since the last (re)start to the run's statistics.
-  auto accumulate_counters = [&] {
-    using Getter = int (*)(void*, long*);
-    const std::pair<Getter, long SolverStats::*> counters[] = {
-        {CVodeGetNumErrTestFails, &SolverStats::error_test_failures},
-        {CVodeGetNumNonlinSolvIters, &SolverStats::newton_iterations},
-        {CVodeGetNumNonlinSolvConvFails, &SolverStats::newton_failures},
-        {CVodeGetNumLinSolvSetups, &SolverStats::linear_setups},
-        {CVodeGetNumRhsEvals, &SolverStats::rhs_evals},
-        {CVodeGetNumJacEvals, &SolverStats::jac_evals}};
-    for (const auto& [get, field] : counters) {
-      long v = 0;
-      get(h.mem, &v);
-      res.stats.*field += v;
-    }
-  };
+  auto accumulate_counters = [&] { add_cvodes_counters(h.mem, res.stats); };
   auto total_steps = [&] {
     long v = 0;
     CVodeGetNumSteps(h.mem, &v);
