@@ -19,6 +19,7 @@
 #include "solver/cvodes_counters.hpp"
 #include "solver/matrix_kernels.hpp"
 #include "solver/serial_kernels.hpp"
+#include "solver/trigger_tracker.hpp"
 
 namespace phasmid::solver {
 using model::JetK;
@@ -182,10 +183,18 @@ struct ContextHandle {
 }  // namespace
 
 SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPartition& P, const SolverOptions& options,
-                            const std::vector<double>& p, const std::vector<double>& output_times,
-                            const std::vector<RootSpec>& roots) {
+                            const std::vector<double>& p_given, const std::vector<double>& output_times,
+                            const std::vector<RootSpec>& caller_roots) {
   auto wall0 = std::chrono::steady_clock::now();
   const size_t n = model.num_states();
+  // Triggered command times are "never" until their events (as in Simulator::run); each trigger
+  // watches its threshold in both directions, after the caller's roots.
+  const std::vector<model::CommandTrigger>& triggers = model.triggers();
+  std::vector<double> p = p_given;
+  for (const auto& tr : triggers)
+    for (size_t k : tr.targets) p[k] = model::kUnresolvedMs;
+  std::vector<RootSpec> roots = caller_roots;
+  for (const auto& tr : triggers) roots.push_back({tr.state, tr.level_scale * p[tr.level_param], 0});
   const size_t n_out = output_times.size();
   const double t_end = output_times.back();
   const std::vector<double> y0 = model.initial_state(p);
@@ -312,6 +321,62 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
     for (size_t i = 0; i < ps.states.size(); ++i) row[ps.states[i]] = NV_Ith_S(ps.tmp, i);
   };
 
+  // Trigger crossings wait until every part has passed them (an earlier crossing in a lagging
+  // part may arm or fire a trigger first; in_stance reads other parts' states), then fire in
+  // time order. A command at tau is a new synchronisation point: parts already beyond tau go
+  // back to it (tau lies in their last step) and what they found after tau is discarded.
+  std::vector<char> discarded;   // per entry of res.events
+  std::vector<size_t> deferred;  // res.events entries that are trigger crossings not yet fed
+  std::vector<TriggerTracker> trackers(triggers.size());
+  auto roll_back = [&](PartSolver& x, double tau) {
+    write_states(x, tau, x.yfull.data());
+    for (size_t i = 0; i < x.states.size(); ++i) NV_Ith_S(x.y, i) = x.yfull[x.states[i]];
+    x.add_counters();
+    check(CVodeReInit(x.mem, tau, x.y), "CVodeReInit");
+    x.t = tau;
+    while (x.next_out > first_out && output_times[x.next_out - 1] > tau) --parts_done[--x.next_out];
+  };
+  auto add_command_time = [&](double tau) {
+    const auto at = std::lower_bound(breaks.begin() + static_cast<long>(next_break), breaks.end(), tau);
+    if (std::abs(*at - tau) <= 1e-9 * std::max(1.0, tau)) return;  // already a synchronisation point
+    const bool next = at == breaks.begin() + static_cast<long>(next_break);
+    breaks.insert(at, tau);
+    if (!next) return;  // later than the next one: every part is before it
+    for (auto& x : run.parts) {
+      if (x->t > tau) roll_back(*x, tau);
+      else if (x->t < tau) check(CVodeSetStopTime(x->mem, tau), "CVodeSetStopTime");
+    }
+    for (size_t id = 0; id < res.events.size(); ++id)
+      if (res.events[id].t > tau) discarded[id] = 1;
+    deferred.erase(std::remove_if(deferred.begin(), deferred.end(), [&](size_t id) { return discarded[id] != 0; }),
+                   deferred.end());
+    for (auto& x : run.parts)
+      x->pending_events.erase(std::remove_if(x->pending_events.begin(), x->pending_events.end(),
+                                             [&](size_t id) { return discarded[id] != 0; }),
+                              x->pending_events.end());
+  };
+  auto feed_triggers = [&] {
+    double t_min = INFINITY;
+    for (auto& x : run.parts) t_min = std::min(t_min, x->t);
+    for (;;) {
+      auto next = std::min_element(deferred.begin(), deferred.end(),
+                                   [&](size_t a, size_t b) { return res.events[a].t < res.events[b].t; });
+      if (next == deferred.end() || res.events[*next].t > t_min) return;
+      const size_t id = *next;
+      deferred.erase(next);
+      const Event& e = res.events[id];
+      const size_t k = e.root - caller_roots.size();
+      if (!trackers[k].fires(triggers[k], e.t, e.direction, p, e.y.data())) continue;
+      const double tau = e.t + triggers[k].delay_ms;
+      for (size_t q : triggers[k].targets) {
+        p[q] = tau;
+        run.pK[q] = JetK(tau);
+        res.commands.push_back({q, tau, k});
+      }
+      if (tau < t_end) add_command_time(tau);
+    }
+  };
+
   const bool show_progress = options.progress && isatty(STDERR_FILENO);
   auto last_print = std::chrono::steady_clock::now();
   std::vector<int> found;
@@ -366,7 +431,9 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
         e.y.assign(n, NAN);
         for (size_t i = 0; i < ps.states.size(); ++i) e.y[ps.states[i]] = NV_Ith_S(ps.y, i);  // y(tret)
         res.events.push_back(std::move(e));
+        discarded.push_back(0);
         const size_t id = res.events.size() - 1;
+        if (ps.roots[r] >= caller_roots.size()) deferred.push_back(id);
         // Parts past the event interpolate now (its time lies in their last step: each part's
         // last step began at or before the lagging part's time); the others when they get there.
         for (auto& other : run.parts) {
@@ -394,6 +461,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
         ++i;
       }
     }
+    if (!deferred.empty()) feed_triggers();
     if (show_progress) {
       auto now = std::chrono::steady_clock::now();
       if (now - last_print > std::chrono::milliseconds(200)) {
@@ -407,7 +475,11 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
     std::fprintf(stderr, "\r%s: t = %.0f / %.0f ms (100%%, %zu parts)\n", options.progress_label.c_str(), t_end, t_end,
                  run.parts.size());
 
-  // Events in time order, each with the full right-hand side at its state.
+  // The caller's events in time order, each with the full right-hand side at its state.
+  std::vector<Event> kept;
+  for (size_t id = 0; id < res.events.size(); ++id)
+    if (!discarded[id] && res.events[id].root < caller_roots.size()) kept.push_back(std::move(res.events[id]));
+  res.events = std::move(kept);
   std::stable_sort(res.events.begin(), res.events.end(), [](const Event& a, const Event& b) { return a.t < b.t; });
   for (Event& e : res.events) {
     e.ydot.assign(n, 0.0);

@@ -294,7 +294,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
   if (output_times.empty() || output_times.front() < 0) throw Error("output times must start at t >= 0");
   const size_t ns = sens_params.size();
   const std::vector<model::CommandTrigger>& triggers = model_.triggers();
-  if (options_.partitioned && ns == 0 && triggers.empty()) {
+  if (options_.partitioned && ns == 0) {
     const model::ModelPartition parts = model_.partition();
     if (parts.size() > 1) return run_partitioned(model_, parts, options_, p_given, output_times, roots);
   }

@@ -57,7 +57,7 @@ struct SolverOptions {
   VectorKernels vector_kernels = VectorKernels::Phasmid;
   int max_order = 0;                      // BDF/Adams order limit (0: CVODES default, 5 / 12)
   bool stability_limit_detection = false; // CVodeSetStabLimDet (BDF orders >= 3)
-  // Plain runs (no sensitivities, no [[triggers]]) of a model with several parts (joints):
+  // Plain runs (no sensitivities) of a model with several parts (joints):
   // one integrator per part, each on its own step size (solver/partitioned_simulator.hpp).
   bool partitioned = true;
   bool progress = false;             // progress line on a terminal (stderr)
