@@ -17,17 +17,25 @@ struct SimulateArgs {
 
 // One line per triggered command time (its value is needed to reproduce the run with fixed
 // times, e.g. for `phasmid sensitivity`), and one per trigger that never fired.
+// "front.touchdown" or, with in_stance, "front.touchdown with hind in stance".
+std::string trigger_text(const model::CommandTrigger& tr) {
+  std::string s = tr.event;
+  for (size_t i = 0; i < tr.in_stance.size(); ++i)
+    s += (i == 0 ? " with " : i + 1 == tr.in_stance.size() ? " and " : ", ") + tr.in_stance[i].leg;
+  return tr.in_stance.empty() ? s : s + " in stance";
+}
+
 void report_triggers(const model::OdeModel& m, const solver::SolveResult& r) {
   const auto& triggers = m.triggers();
   std::vector<bool> fired(triggers.size(), false);
   for (const auto& c : r.commands) {
     fired[c.trigger] = true;
     std::cerr << "phasmid simulate: " << m.parameters().at(c.parameter).name << " = " << c.t_ms << " ms (trigger "
-              << triggers[c.trigger].event << ")\n";
+              << trigger_text(triggers[c.trigger]) << ")\n";
   }
   for (size_t k = 0; k < triggers.size(); ++k)
     if (!fired[k])
-      std::cerr << "phasmid simulate: warning: trigger " << triggers[k].event << " for "
+      std::cerr << "phasmid simulate: warning: trigger " << trigger_text(triggers[k]) << " for "
                 << m.parameters().at(triggers[k].targets.front()).name << " did not fire before the end of the run\n";
 }
 

@@ -30,25 +30,65 @@ std::vector<std::string> names_of(const Config& cfg, const toml::node& node, con
   return out;
 }
 
+// Legs with ground contact: a CTr angle and a PR threshold <leg>.coupling.beta_thr_pr (the
+// legs of features::feature_roots), listed for messages.
+bool has_contact(const model::OdeModel& m, const std::string& leg) {
+  return !leg.empty() && m.parameters().contains(leg + ".coupling.beta_thr_pr");
+}
+
+std::string contact_legs(const model::OdeModel& m) {
+  std::string legs;
+  for (const auto& ch : m.angles())
+    if (ch.joint == "ctr" && has_contact(m, ch.leg)) legs += (legs.empty() ? "" : ", ") + ch.leg;
+  return legs;
+}
+
 // "<leg>.touchdown" (beta falling through <leg>.coupling.beta_thr_pr) or "<leg>.liftoff"
 // (rising): the ground-contact events of the walking models (features::feature_roots).
-void parse_event(const Config& cfg, const toml::node& node, const model::OdeModel& m, model::CommandTrigger& tr) {
+// Returns the event's leg.
+std::string parse_event(const Config& cfg, const toml::node& node, const model::OdeModel& m, model::CommandTrigger& tr) {
   tr.event = text(cfg, node, "event");
   const size_t dot = tr.event.rfind('.');
   const std::string leg = dot == std::string::npos ? "" : tr.event.substr(0, dot);
   const std::string kind = dot == std::string::npos ? tr.event : tr.event.substr(dot + 1);
-  std::string legs;
-  for (const auto& ch : m.angles())
-    if (ch.joint == "ctr" && m.parameters().contains(ch.leg + ".coupling.beta_thr_pr"))
-      legs += (legs.empty() ? "" : ", ") + ch.leg;
-  const bool leg_ok = !leg.empty() && m.parameters().contains(leg + ".coupling.beta_thr_pr");
-  if (!leg_ok || (kind != "touchdown" && kind != "liftoff"))
+  const std::string legs = contact_legs(m);
+  if (!has_contact(m, leg) || (kind != "touchdown" && kind != "liftoff"))
     throw Error(where(cfg, node) + ": unknown event '" + tr.event + "' in [[triggers]] (expected <leg>.touchdown or <leg>.liftoff" +
                 (legs.empty() ? "; this model has no legs with ground contact)" : " with leg one of " + legs + ")"));
   tr.state = m.state_index(leg + ".ctr.beta");
   tr.level_param = m.parameters().index(leg + ".coupling.beta_thr_pr");
   tr.level_scale = M_PI / 180.0;  // threshold in deg, beta integrated in rad
   tr.direction = kind == "liftoff" ? +1 : -1;
+  return leg;
+}
+
+// in_stance = ["hind", ...]: legs (other than the event's own) that must be in stance at the
+// event, on the touched-down side of the threshold of their <leg>.touchdown event.
+void parse_in_stance(const Config& cfg, const toml::node& node, const model::OdeModel& m, const std::string& event_leg,
+                     model::CommandTrigger& tr) {
+  const toml::array* a = node.as_array();
+  if (!a) throw Error(where(cfg, node) + ": 'in_stance' must be an array of leg names, e.g. in_stance = [\"hind\"]");
+  if (a->empty()) throw Error(where(cfg, node) + ": 'in_stance' names no leg");
+  const std::string legs = contact_legs(m);
+  for (const toml::node& x : *a) {
+    auto leg = x.value<std::string>();
+    if (!leg) throw Error(where(cfg, x) + ": 'in_stance' must be an array of leg names, e.g. in_stance = [\"hind\"]");
+    if (!has_contact(m, *leg))
+      throw Error(where(cfg, x) + ": unknown leg '" + *leg + "' in [[triggers]] 'in_stance' (" +
+                  (legs.empty() ? "this model has no legs with ground contact)" : "expected one of " + legs + ")"));
+    if (*leg == event_leg)
+      throw Error(where(cfg, x) + ": leg '" + *leg + "' in 'in_stance' is the leg of the event " + tr.event +
+                  " (name the other legs that must be in stance)");
+    for (const auto& c : tr.in_stance)
+      if (c.leg == *leg) throw Error(where(cfg, x) + ": leg '" + *leg + "' is named twice in 'in_stance'");
+    model::StanceCondition c;
+    c.leg = *leg;
+    c.state = m.state_index(*leg + ".ctr.beta");
+    c.level_param = m.parameters().index(*leg + ".coupling.beta_thr_pr");
+    c.level_scale = M_PI / 180.0;
+    c.stance_side = -1;  // the direction of <leg>.touchdown: beta below the threshold
+    tr.in_stance.push_back(std::move(c));
+  }
 }
 
 double non_negative(const Config& cfg, const toml::node& node, const std::string& key) {
@@ -69,7 +109,7 @@ void apply_triggers(const Config& cfg, model::OdeModel& m, const std::vector<std
   std::vector<std::string> targeted;
   for (const toml::node& item : *arr) {
     const toml::table& t = *item.as_table();
-    check_keys(cfg, t, "[triggers]", {"set", "event", "after", "after_ms", "delay_ms", "occurrence", "debounce_ms"});
+    check_keys(cfg, t, "[triggers]", {"set", "event", "in_stance", "after", "after_ms", "delay_ms", "occurrence", "debounce_ms"});
     model::CommandTrigger tr;
     const toml::node* set = t.get("set");
     const toml::node* event = t.get("event");
@@ -89,7 +129,8 @@ void apply_triggers(const Config& cfg, model::OdeModel& m, const std::vector<std
       // An explicit --set gives a fixed time, which replaces the trigger for this parameter.
       if (!std::count(overrides.begin(), overrides.end(), name)) tr.targets.push_back(k);
     }
-    parse_event(cfg, *event, m, tr);
+    const std::string event_leg = parse_event(cfg, *event, m, tr);
+    if (const toml::node* n = t.get("in_stance")) parse_in_stance(cfg, *n, m, event_leg, tr);
     const toml::node* after = t.get("after");
     const toml::node* after_ms = t.get("after_ms");
     if (after && after_ms)

@@ -552,6 +552,14 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
         if (st.fired || dir != tr.direction || t - previous_ms < tr.debounce_ms) continue;
         const double earliest_ms = tr.after_param == model::kNoTriggerParameter ? tr.after_ms : p[tr.after_param];
         if (earliest_ms >= model::kUnresolvedMs || t < earliest_ms) continue;
+        // in_stance: each listed leg must be in ground contact at this crossing, its state at the
+        // root on the touched-down side of its threshold. This only selects which crossing counts
+        // (it is not a root itself): the event time and its derivative below are the crossing's.
+        const double* y_root = N_VGetArrayPointer(h.y);
+        if (!std::all_of(tr.in_stance.begin(), tr.in_stance.end(), [&](const model::StanceCondition& c) {
+              return c.stance_side * (y_root[c.state] - c.level_scale * p[c.level_param]) > 0;
+            }))
+          continue;
         if (++st.count < tr.occurrence) continue;
         st.fired = true;
         const double when = t + tr.delay_ms;

@@ -26,6 +26,16 @@ expect_error "unknown coupling_gate names file:line and the choices" "gate.toml:
 printf '[model]\ntype = "three_legs"\n[[triggers]]\nset = "gait.switch_ms"\nevent = "hind.landing"\n' >"$tmp/trig.toml"
 expect_error "unknown trigger event names file:line" "trig.toml:5: unknown event 'hind.landing'" \
   "$PHASMID" simulate "$tmp/trig.toml" -o "$tmp/e.h5" -q
+printf '[model]\ntype = "three_legs"\n[[triggers]]\nset = "gait.switch_ms"\nevent = "front.touchdown"\nin_stance = ["hnd"]\n' >"$tmp/stance.toml"
+expect_error "unknown in_stance leg names file:line and the legs" "stance.toml:6: unknown leg 'hnd' in \[\[triggers\]\] 'in_stance' (expected one of front, middle, hind)" \
+  "$PHASMID" simulate "$tmp/stance.toml" -o "$tmp/e2.h5" -q
+[ -e "$tmp/e2.h5" ] && { echo "FAIL: output left after a config error"; fail=$((fail+1)); }
+printf '[model]\ntype = "three_legs"\n[[triggers]]\nset = "gait.switch_ms"\nevent = "front.touchdown"\nin_stance = "hind"\n' >"$tmp/stance2.toml"
+expect_error "in_stance not a list names file:line" "stance2.toml:6: 'in_stance' must be an array of leg names" \
+  "$PHASMID" params "$tmp/stance2.toml"
+printf '[model]\ntype = "three_legs"\n[[triggers]]\nset = "gait.switch_ms"\nevent = "front.touchdown"\nin_stance = ["hind", 2]\n' >"$tmp/stance3.toml"
+expect_error "in_stance with a non-string names file:line" "stance3.toml:6: 'in_stance' must be an array of leg names" \
+  "$PHASMID" params "$tmp/stance3.toml"
 printf '[model]\ntype = "three_legs"\n[[triggers]]\nset = "gait.switch_ms"\nevent = "hind.liftoff"\n[sensitivity]\nparameters = ["gait.switch_ms"]\n' >"$tmp/trigsens.toml"
 expect_error "no sensitivity to a triggered command time" "no sensitivity to gait.switch_ms: it is set by the \[\[triggers\]\] event hind.liftoff" \
   "$PHASMID" sensitivity "$tmp/trigsens.toml" -o "$tmp/f.h5"
