@@ -12,7 +12,7 @@
 // three legs the lags hind->middle and middle->front (in periods). `kernels=phasmid,sundials`
 // adds a row per model with Debian's own (unoptimised) SUNDIALS vector/matrix kernels, the
 // baseline of solver/serial_kernels.hpp. `integration=parts,whole` adds a row per model
-// integrated as one system ("[whole]", SolverOptions::partitioned = false), the baseline of
+// integrated as one system ("[whole]", Partitioning::Off; "parts" forces On), the baseline of
 // the partitioned integration (solver/partitioned_simulator.hpp; the single joint is one part
 // either way). Times are the best of BENCH_REPEATS (default 3) runs.
 // Environment: BENCH_MAXORD=q limits the BDF order,
@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
       }
       solver::SolverOptions sok = so;
       if (std::string(kern) == "sundials") sok.vector_kernels = solver::VectorKernels::Sundials;
-      sok.partitioned = std::string(integ) == "parts";
+      sok.partitioning = std::string(integ) == "parts" ? solver::Partitioning::On : solver::Partitioning::Off;
       solver::Simulator sim(*m, sok);
       // Best of `repeats` runs: single timings on this VM scatter by up to 1.7x (docs/benchmarks.md).
       double wall = 1e300, cpu = 1e300;

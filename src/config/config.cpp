@@ -249,8 +249,13 @@ SimulationSettings simulation_settings(const Config& cfg) {
     else throw Error(where(cfg, *n) + ": linear_solver must be \"auto\", \"dense\", \"band\" or \"klu\"");
   }
   if (const toml::node* n = st->get("partitioned")) {
-    if (!n->is_boolean()) throw Error(where(cfg, *n) + ": 'partitioned' must be true or false");
-    s.solver.partitioned = n->value<bool>().value_or(true);
+    if (n->is_boolean()) {
+      s.solver.partitioning = *n->value<bool>() ? solver::Partitioning::On : solver::Partitioning::Off;
+    } else if (n->value<std::string>().value_or("") == "auto") {
+      s.solver.partitioning = solver::Partitioning::Auto;
+    } else {
+      throw Error(where(cfg, *n) + ": 'partitioned' must be true, false or \"auto\"");
+    }
   }
   return s;
 }

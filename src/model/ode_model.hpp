@@ -85,6 +85,8 @@ class OdeModel {
   // The model's parts for partitioned integration (empty: the model cannot be partitioned)
   // and the equations of part k of that partition.
   virtual ModelPartition partition() const { return {}; }
+  // Whether partitioned integration is the default for plain runs (it pays at equal accuracy).
+  virtual bool partition_by_default() const { return false; }
   virtual std::unique_ptr<OdeModelPart> make_part(const ModelPartition& partition, size_t k) const {
     (void)partition; (void)k;
     return nullptr;

@@ -25,6 +25,7 @@
 #include "solver/matrix_kernels.hpp"
 #include "solver/partitioned_simulator.hpp"
 #include "solver/serial_kernels.hpp"
+#include "solver/trigger_tracker.hpp"
 
 namespace phasmid::solver {
 using model::Jet1;
@@ -294,7 +295,9 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
   if (output_times.empty() || output_times.front() < 0) throw Error("output times must start at t >= 0");
   const size_t ns = sens_params.size();
   const std::vector<model::CommandTrigger>& triggers = model_.triggers();
-  if (options_.partitioned && ns == 0) {
+  const bool partition = options_.partitioning == Partitioning::On ||
+                         (options_.partitioning == Partitioning::Auto && model_.partition_by_default());
+  if (partition && ns == 0) {
     const model::ModelPartition parts = model_.partition();
     if (parts.size() > 1) return run_partitioned(model_, parts, options_, p_given, output_times, roots);
   }
@@ -489,12 +492,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
   res.n_states = n;
   res.sens_params = sens_params;
   std::vector<int> rootsfound(all_roots.size());
-  struct TriggerState {
-    bool fired = false;
-    int count = 0;
-    double last_crossing_ms = -INFINITY;
-  };
-  std::vector<TriggerState> trig(triggers.size());
+  std::vector<TriggerTracker> trig(triggers.size());
   const bool show_progress = options_.progress && isatty(STDERR_FILENO);
   auto last_print = std::chrono::steady_clock::now();
   std::vector<double> ydot(n);
@@ -546,22 +544,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
         const int dir = rootsfound[roots.size() + k];
         if (!dir) continue;
         const model::CommandTrigger& tr = triggers[k];
-        TriggerState& st = trig[k];
-        const double previous_ms = st.last_crossing_ms;
-        st.last_crossing_ms = t;
-        if (st.fired || dir != tr.direction || t - previous_ms < tr.debounce_ms) continue;
-        const double earliest_ms = tr.after_param == model::kNoTriggerParameter ? tr.after_ms : p[tr.after_param];
-        if (earliest_ms >= model::kUnresolvedMs || t < earliest_ms) continue;
-        // in_stance: each listed leg must be in ground contact at this crossing, its state at the
-        // root on the touched-down side of its threshold. This only selects which crossing counts
-        // (it is not a root itself): the event time and its derivative below are the crossing's.
-        const double* y_root = N_VGetArrayPointer(h.y);
-        if (!std::all_of(tr.in_stance.begin(), tr.in_stance.end(), [&](const model::StanceCondition& c) {
-              return c.stance_side * (y_root[c.state] - c.level_scale * p[c.level_param]) > 0;
-            }))
-          continue;
-        if (++st.count < tr.occurrence) continue;
-        st.fired = true;
+        if (!trig[k].fires(tr, t, dir, p, N_VGetArrayPointer(h.y))) continue;
         const double when = t + tr.delay_ms;
         // d t_event / dp_j by the implicit-function theorem on g = y[state] - scale p[level]:
         // -(s_state,j - scale [p_j is the level]) / f_state (dg/dt = 0); the delay is constant,

@@ -26,6 +26,7 @@ enum class SensitivityRhs { Batched, PerParameter };
 // linear solves). Chosen by measurement per model (docs/benchmarks.md).
 enum class IntegratorKind { Bdf, Adams };
 enum class VectorKernels { Phasmid, Sundials };
+enum class Partitioning { Auto, On, Off };
 
 struct SolverOptions {
   double rtol = 1e-8;
@@ -57,9 +58,11 @@ struct SolverOptions {
   VectorKernels vector_kernels = VectorKernels::Phasmid;
   int max_order = 0;                      // BDF/Adams order limit (0: CVODES default, 5 / 12)
   bool stability_limit_detection = false; // CVodeSetStabLimDet (BDF orders >= 3)
-  // Plain runs (no sensitivities) of a model with several parts (joints):
-  // one integrator per part, each on its own step size (solver/partitioned_simulator.hpp).
-  bool partitioned = true;
+  // Plain runs (no sensitivities) of a model with several parts (joints): one integrator per
+  // part, each on its own step size (solver/partitioned_simulator.hpp). Auto: where the model
+  // says it pays at equal accuracy (OdeModel::partition_by_default: the rate-MN walking models;
+  // docs/benchmarks.md "Partitioned integration").
+  Partitioning partitioning = Partitioning::Auto;
   bool progress = false;             // progress line on a terminal (stderr)
   std::string progress_label = "simulate";
 };
@@ -86,7 +89,7 @@ struct SolverStats {
   // Over the whole run (CVodeReInit at breakpoints resets CVODES' own counters): error-test
   // failures, Newton iterations and convergence failures, linear-solver setups.
   long error_test_failures = 0, newton_iterations = 0, newton_failures = 0, linear_setups = 0;
-  long integrators = 1;  // parts integrated separately (SolverOptions::partitioned), 1: one system
+  long integrators = 1;  // parts integrated separately (SolverOptions::partitioning), 1: one system
   double wall_seconds = 0.0;
 };
 

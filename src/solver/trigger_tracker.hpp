@@ -1,8 +1,9 @@
 #pragma once
 // Which threshold crossing fires a [[triggers]] entry (model::CommandTrigger): the crossings of
 // its threshold are fed in time order; the first one in the trigger's direction, not within
-// debounce_ms of the previous crossing, at or after the earliest time, and the occurrence-th
-// such, fires it. Shared by the whole-system and the partitioned simulator.
+// debounce_ms of the previous crossing, at or after the earliest time, with the in_stance legs
+// in stance, and the occurrence-th such, fires it. Shared by the whole-system and the
+// partitioned simulator.
 #include <cmath>
 #include <vector>
 

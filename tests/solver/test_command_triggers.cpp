@@ -52,13 +52,13 @@ struct TriggerRun {
   }
 };
 
-// partitioned / rtol: the integration (SolverOptions::partitioned; rtol = atol, 0: the config's).
+// partitioned / rtol: the integration (SolverOptions::partitioning On / Off; rtol = atol, 0: the config's).
 TriggerRun run(const std::vector<std::string>& sets, bool partitioned = true, double rtol = 0.0) {
   auto cfg = config::parse_config(kConfig, "triggers.toml");
   TriggerRun x;
   x.m = config::build_model(cfg, sets);
   solver::SolverOptions o = config::simulation_settings(cfg).solver;
-  o.partitioned = partitioned;
+  o.partitioning = partitioned ? solver::Partitioning::On : solver::Partitioning::Off;
   if (rtol > 0) o.rtol = o.atol = rtol;
   solver::Simulator sim(*x.m, o);
   auto roots = features::feature_roots(*x.m);

@@ -45,7 +45,7 @@ void expect_parts_reproduce_rhs(const model::OdeModel& m, double t_end) {
   const auto p = m.parameters().values();
   solver::SolverOptions o;
   o.rtol = o.atol = 1e-6;
-  o.partitioned = false;
+  o.partitioning = solver::Partitioning::Off;
   const auto grid = solver::output_grid(t_end, t_end / 20);
   const solver::SolveResult r = solver::Simulator(m, o).run(p, grid);
   std::mt19937 rng(7);
@@ -74,7 +74,7 @@ struct EventTimes {
 EventTimes events(const model::OdeModel& m, double t_end, double rtol, bool partitioned) {
   solver::SolverOptions o;
   o.rtol = o.atol = rtol;
-  o.partitioned = partitioned;
+  o.partitioning = partitioned ? solver::Partitioning::On : solver::Partitioning::Off;
   const auto r = solver::Simulator(m, o).run(m.parameters().values(), solver::output_grid(t_end, 5.0),
                                              features::feature_roots(m));
   EventTimes e;
