@@ -31,6 +31,9 @@ Walk walk(const std::string& config, const std::string& motoneuron, double t_end
   auto m = config::build_model(cfg);
   auto s = config::simulation_settings(cfg);
   s.solver.rtol = s.solver.atol = tol;
+  // Both formulations as one system, so that the step counts compare the formulations (a
+  // partitioned run, the default with rate MNs, counts the steps of every joint's integrator).
+  s.solver.partitioning = solver::Partitioning::Off;
   solver::Simulator sim(*m, s.solver);
   auto r = sim.run(m->parameters().values(), solver::output_grid(t_end, 5.0), features::feature_roots(*m));
   features::FeatureOptions fo;
