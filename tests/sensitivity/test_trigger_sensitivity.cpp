@@ -20,28 +20,13 @@
 #include "config/config.hpp"
 #include "features/features.hpp"
 #include "fd_check.hpp"
+#include "../solver/middle_leg_trigger_config.hpp"
 
 using namespace phasmid;
 
 namespace {
-const char* kConfig = R"(
-[model]
-type = "leg"
-leg = "middle"
-direction_switch = true
-motoneuron = "rate"
-
-[[triggers]]
-set = "middle.command.backward_ms"
-event = "middle.touchdown"
-after_ms = 900
-
-[[triggers]]
-set = "middle.command.forward_ms"
-event = "middle.liftoff"
-after = "middle.command.backward_ms"
-delay_ms = 150
-)";
+// Backward from the first touch-down after 900 ms, forward 150 ms after the next lift-off.
+const std::string kConfig = test::middle_leg_trigger_config(900, 150);
 constexpr double kTEnd = 2600, kDiscard = 700;
 }  // namespace
 

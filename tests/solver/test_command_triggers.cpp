@@ -13,32 +13,13 @@
 
 #include "config/config.hpp"
 #include "features/features.hpp"
+#include "middle_leg_trigger_config.hpp"
 
 using namespace phasmid;
 
 namespace {
-const char* kConfig = R"(
-[model]
-type = "leg"
-leg = "middle"
-direction_switch = true
-motoneuron = "rate"
-
-[[triggers]]
-set = "middle.command.backward_ms"
-event = "middle.touchdown"
-after_ms = 1500
-
-[[triggers]]
-set = "middle.command.forward_ms"
-event = "middle.liftoff"
-after = "middle.command.backward_ms"
-delay_ms = 200
-
-[simulation]
-rtol = 1e-6
-atol = 1e-6
-)";
+// Backward from the first touch-down after 1500 ms, forward 200 ms after the next lift-off.
+const std::string kConfig = test::middle_leg_trigger_config(1500, 200) + "\n[simulation]\nrtol = 1e-6\natol = 1e-6\n";
 
 struct TriggerRun {
   std::unique_ptr<model::OdeModel> m;
