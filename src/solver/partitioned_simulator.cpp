@@ -66,8 +66,7 @@ struct PartSolver {
   std::vector<size_t> roots;          // global root indices watched by this part
   std::vector<size_t> root_state;     // their local state indices
   std::vector<size_t> pending_events; // events whose state this part has not yet passed
-  long steps_done = 0;                // over restarts
-  SolverStats counters;
+  SolverStats counters;               // over restarts (CVodeReInit resets CVODES' own)
 
   ~PartSolver() {
     if (NLS) SUNNonlinSolFree(NLS);

@@ -15,9 +15,11 @@
 // part's current time. Central commands (model breakpoints) are synchronisation points where
 // all parts restart together. Events (roots) belong to the part owning the root's state; the
 // other parts' states at the event are interpolated once they have passed its time.
+// [[triggers]]: their crossings fire in time order once every part has passed them; a command
+// time found so becomes a synchronisation point, and parts already beyond it go back to it.
 //
-// Not for forward sensitivities or [[triggers]] (Simulator::run then integrates the whole
-// model as one system); docs/benchmarks.md compares the two.
+// Not for forward sensitivities (Simulator::run then integrates the whole model as one
+// system); SolverOptions::partitioning chooses; docs/benchmarks.md compares the two.
 #include <vector>
 
 #include "model/ode_model.hpp"
