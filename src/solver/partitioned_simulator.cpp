@@ -306,7 +306,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
     for (auto& ps : run.parts) s += ps->total_steps();
     return s;
   };
-  // Writes part `ps`'s states at time t (within its last step) into row `row` of `dst`.
+  // Writes part `ps`'s states at time t (within its last step) into the full-size state `row`.
   auto write_states = [&](PartSolver& ps, double t, double* row) {
     if (CVodeGetDky(ps.mem, t, 0, ps.tmp) < 0) {  // the scheduling guarantees t is in the last step
       double tn = 0.0, hu = 0.0;
