@@ -110,6 +110,9 @@ std::vector<Variant> variants() {
   add("per-par", [](auto& x) { x.sensitivity_rhs = solver::SensitivityRhs::PerParameter; });
   add("stagg.", [](auto& x) { x.sensitivity_method = solver::SensitivityMethod::Staggered; });
   add("tolS x10", [](auto& x) { x.sensitivity_tolerance_factor = 10.0; });
+  add("tolS x100", [](auto& x) { x.sensitivity_tolerance_factor = 100.0; });
+  add("tolS x1e3", [](auto& x) { x.sensitivity_tolerance_factor = 1000.0; });
+  add("tolS x1e4", [](auto& x) { x.sensitivity_tolerance_factor = 1e4; });
   add("no-errcon", [](auto& x) { x.sensitivity_error_control = false; });
   add("klu", [](auto& x) { x.linear_solver = solver::LinearSolverKind::Klu; });
   add("dense", [](auto& x) { x.linear_solver = solver::LinearSolverKind::Dense; });

@@ -286,6 +286,21 @@ std::string H5Reader::read_string_attribute(const std::string& object_path, cons
   return out;
 }
 
+double H5Reader::read_double_attribute(const std::string& object_path, const std::string& name) const {
+  hid_t obj = open_object(file_, object_path);
+  if (H5Aexists(obj, name.c_str()) <= 0) {
+    H5Oclose(obj);
+    throw Error(path_ + ": no attribute " + name + " on " + object_path);
+  }
+  hid_t attr = H5Aopen(obj, name.c_str(), H5P_DEFAULT);
+  double value = 0.0;
+  herr_t st = H5Aread(attr, H5T_NATIVE_DOUBLE, &value);
+  H5Aclose(attr);
+  H5Oclose(obj);
+  check(st, "cannot read attribute " + name);
+  return value;
+}
+
 static herr_t collect_link_name(hid_t, const char* name, const H5L_info_t*, void* data) {
   static_cast<std::vector<std::string>*>(data)->push_back(name);
   return 0;

@@ -66,6 +66,10 @@ SensitivityJob parse_sensitivity_section(const toml::table& section, const model
     } else if (key == "staggered") {
       job.options.solver.sensitivity_method =
           boolean(node, key, origin) ? solver::SensitivityMethod::Staggered : solver::SensitivityMethod::Simultaneous;
+    } else if (key == "tolerance_factor") {
+      const double v = number(node, key, origin);
+      if (!(v > 0) || !std::isfinite(v)) throw Error(at + ": [sensitivity] tolerance_factor must be a positive number");
+      job.options.solver.sensitivity_tolerance_factor = v;
     } else if (key == "floquet") {
       job.floquet = boolean(node, key, origin);
     } else if (key == "transient_ms") {

@@ -70,6 +70,9 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
   if (p.size() != ps.size()) throw Error("internal: parameter vector size mismatch");
   SensitivityReport rep;
   rep.method = opt.method;
+  rep.rtol = opt.solver.rtol;
+  rep.atol = opt.solver.atol;
+  rep.tolerance_factor = opt.method == Method::Forward ? opt.solver.sensitivity_tolerance_factor : 1.0;
   std::vector<size_t> idx;
   // Command times set by [[triggers]] are functions of the other parameters (event time plus a
   // delay), not free parameters: left out of "all", an error if named (docs/sensitivity.md).
@@ -179,6 +182,9 @@ void write_sensitivity_h5(io::H5Writer& out, const SensitivityReport& rep) {
   const size_t np = rep.parameters.size();
   out.ensure_group("/sensitivity");
   out.set_attribute("/sensitivity", "method", std::string(method_name(rep.method)));
+  out.set_attribute("/sensitivity", "rtol", rep.rtol);
+  out.set_attribute("/sensitivity", "atol", rep.atol);
+  out.set_attribute("/sensitivity", "tolerance_factor", rep.tolerance_factor);
   out.write("/sensitivity/parameters", rep.parameters);
   out.write("/sensitivity/parameter_units", rep.parameter_units);
   out.write("/sensitivity/parameter_method", rep.parameter_method);

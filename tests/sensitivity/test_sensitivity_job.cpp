@@ -25,12 +25,14 @@ trajectory = false
 floquet = true
 transient_ms = 1500
 max_period_ms = 600
+tolerance_factor = 10
 )");
   auto job = sensitivity::parse_sensitivity_section(*tbl["sensitivity"].as_table(), m, "test.toml");
   EXPECT_EQ(job.options.parameters.size(), 4u);
   EXPECT_DOUBLE_EQ(job.options.t_end_ms, 2500);
   EXPECT_FALSE(job.options.write_trajectory);
   EXPECT_TRUE(job.floquet);
+  EXPECT_DOUBLE_EQ(job.options.solver.sensitivity_tolerance_factor, 10.0);
   auto p = m.parameters().values();
   auto out = sensitivity::run_sensitivity_job(m, p, job);
   ASSERT_TRUE(out.has_floquet);
@@ -47,6 +49,7 @@ max_period_ms = 600
   // d period / d switch.period_ms = 1 (the cycle follows the forcing).
   EXPECT_NEAR(in.read_doubles("/sensitivity/features/period_ms")[3], 1.0, 1e-4);
   EXPECT_FALSE(in.exists("/sensitivity/trajectory"));
+  EXPECT_DOUBLE_EQ(in.read_double_attribute("/sensitivity", "tolerance_factor"), 10.0);
   EXPECT_EQ(in.read_doubles("/sensitivity/floquet/multipliers_abs").size(), 2u);
   EXPECT_EQ(in.read_doubles("/parameters/values").size(), p.size());
   std::remove(file.c_str());
@@ -68,4 +71,6 @@ TEST(SensitivityJob, ErrorsNameFileLineAndKey) {
   expect_error("[sensitivity]\n\nspeed = 3\n", "unknown key 'speed'");
   expect_error("[sensitivity]\nmethod = \"adjoint\"\n", "adjoint");
   expect_error("[sensitivity]\nt_end_ms = \"long\"\n", "t_end_ms must be a number");
+  expect_error("[sensitivity]\n\ntolerance_factor = 0\n", "cfg.toml:3");
+  expect_error("[sensitivity]\ntolerance_factor = -1\n", "tolerance_factor must be a positive number");
 }
