@@ -265,13 +265,19 @@ std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
   return out;
 }
 
-std::string H5Reader::read_string_attribute(const std::string& object_path, const std::string& name) const {
+// The attribute `name` of the object at `object_path` (an error naming both if it is missing);
+// the caller closes the attribute, then the object.
+std::pair<hid_t, hid_t> H5Reader::open_attribute(const std::string& object_path, const std::string& name) const {
   hid_t obj = open_object(file_, object_path);
   if (H5Aexists(obj, name.c_str()) <= 0) {
     H5Oclose(obj);
     throw Error(path_ + ": no attribute " + name + " on " + object_path);
   }
-  hid_t attr = H5Aopen(obj, name.c_str(), H5P_DEFAULT);
+  return {obj, H5Aopen(obj, name.c_str(), H5P_DEFAULT)};
+}
+
+std::string H5Reader::read_string_attribute(const std::string& object_path, const std::string& name) const {
+  auto [obj, attr] = open_attribute(object_path, name);
   hid_t type = H5Tcopy(H5T_C_S1);
   H5Tset_size(type, H5T_VARIABLE);
   H5Tset_cset(type, H5T_CSET_UTF8);
@@ -287,12 +293,7 @@ std::string H5Reader::read_string_attribute(const std::string& object_path, cons
 }
 
 double H5Reader::read_double_attribute(const std::string& object_path, const std::string& name) const {
-  hid_t obj = open_object(file_, object_path);
-  if (H5Aexists(obj, name.c_str()) <= 0) {
-    H5Oclose(obj);
-    throw Error(path_ + ": no attribute " + name + " on " + object_path);
-  }
-  hid_t attr = H5Aopen(obj, name.c_str(), H5P_DEFAULT);
+  auto [obj, attr] = open_attribute(object_path, name);
   double value = 0.0;
   herr_t st = H5Aread(attr, H5T_NATIVE_DOUBLE, &value);
   H5Aclose(attr);

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace phasmid::io {
@@ -68,6 +69,7 @@ class H5Reader {
   const std::string& path() const { return path_; }
 
  private:
+  std::pair<hid_t, hid_t> open_attribute(const std::string& object_path, const std::string& name) const;
   std::string path_;
   hid_t file_ = -1;
 };

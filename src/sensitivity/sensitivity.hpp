@@ -28,9 +28,6 @@ struct SensitivityOptions {
   double output_dt_ms = 1.0;
   double discard_ms = 0.0;              // transient ignored by the features
   Method method = Method::Forward;
-  // State tolerances of the run(s) and, for forward runs, the factor on the sensitivity
-  // tolerances (SensitivityOptions::solver.sensitivity_tolerance_factor; [sensitivity] tolerance_factor).
-  double rtol = 0.0, atol = 0.0, tolerance_factor = 1.0;
   solver::SolverOptions solver;
   bool write_trajectory = true;         // keep the time x state x parameter sensitivities
   double fd_relative_step = 1e-4;       // h = fd_relative_step * max(|p|, fd_min_scale)
