@@ -17,6 +17,7 @@
 
 #include "common/error.hpp"
 #include "solver/cvodes_counters.hpp"
+#include "solver/cvodes_setup.hpp"
 #include "solver/matrix_kernels.hpp"
 #include "solver/serial_kernels.hpp"
 #include "solver/trigger_tracker.hpp"
@@ -28,10 +29,6 @@ using model::kJacobianChunk;
 namespace {
 
 constexpr int kMaxOrder = 12;  // Adams' maximum; BDF stops at 5
-
-void check(int flag, const char* what) {
-  if (flag < 0) throw SolverError(std::string("CVODES setup failed in ") + what + " (flag " + std::to_string(flag) + ")");
-}
 
 struct Run;
 
@@ -95,7 +92,7 @@ struct PartSolver {
     double factorial = 1.0;
     for (int d = 0; d <= q; ++d) {
       if (d > 0) factorial *= d;
-      check(CVodeGetDky(mem, tn, d, tmp), "CVodeGetDky");
+      check_cvodes(CVodeGetDky(mem, tn, d, tmp), "CVodeGetDky");
       for (size_t e = 0; e < ne; ++e) coef[static_cast<size_t>(d) * ne + e] = NV_Ith_S(tmp, exports[e]) / factorial;
     }
     order = q;
@@ -210,7 +207,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
   run.p = &p;
   run.roots = &roots;
   for (double v : p) run.pK.emplace_back(v);
-  check(SUNContext_Create(nullptr, &ctx.ctx), "SUNContext_Create");
+  check_cvodes(SUNContext_Create(nullptr, &ctx.ctx), "SUNContext_Create");
   for (size_t k = 0; k < P.size(); ++k) {
     auto ps = std::make_unique<PartSolver>();
     ps->run = &run;
@@ -260,33 +257,29 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
     for (size_t e = 0; e < ps.exports.size(); ++e) ps.coef[e] = y0[ps.states[ps.exports[e]]];
     ps.mem = CVodeCreate(adams ? CV_ADAMS : CV_BDF, ctx.ctx);
     if (!ps.mem) throw SolverError("CVodeCreate failed");
-    check(CVodeInit(ps.mem, part_rhs, 0.0, ps.y), "CVodeInit");
-    check(CVodeSStolerances(ps.mem, options.rtol, options.atol), "CVodeSStolerances");
-    check(CVodeSetUserData(ps.mem, &ps), "CVodeSetUserData");
-    check(CVodeSetMaxNumSteps(ps.mem, options.max_steps), "CVodeSetMaxNumSteps");
-    check(CVodeSetErrHandlerFn(ps.mem, [](int, const char*, const char*, char*, void*) {}, nullptr), "silence");
-    if (options.max_step_ms > 0) check(CVodeSetMaxStep(ps.mem, options.max_step_ms), "CVodeSetMaxStep");
-    if (options.max_order > 0) check(CVodeSetMaxOrd(ps.mem, options.max_order), "CVodeSetMaxOrd");
-    if (options.stability_limit_detection) check(CVodeSetStabLimDet(ps.mem, SUNTRUE), "CVodeSetStabLimDet");
+    check_cvodes(CVodeInit(ps.mem, part_rhs, 0.0, ps.y), "CVodeInit");
+    check_cvodes(CVodeSStolerances(ps.mem, options.rtol, options.atol), "CVodeSStolerances");
+    check_cvodes(CVodeSetUserData(ps.mem, &ps), "CVodeSetUserData");
+    apply_step_options(ps.mem, options);
     if (adams) {
       ps.NLS = SUNNonlinSol_FixedPoint(ps.y, 0, ctx.ctx);
-      check(CVodeSetNonlinearSolver(ps.mem, ps.NLS), "CVodeSetNonlinearSolver");
+      check_cvodes(CVodeSetNonlinearSolver(ps.mem, ps.NLS), "CVodeSetNonlinearSolver");
     } else {
       // Parts are small (a joint: 20-26 states): dense LU with the compiled kernels.
       ps.A = SUNDenseMatrix(nk, nk, ctx.ctx);
       ps.LS = SUNLinSol_Dense(ps.y, ps.A, ctx.ctx);
       if (options.vector_kernels == VectorKernels::Phasmid) install_dense_kernels(ps.A, ps.LS);
-      check(CVodeSetLinearSolver(ps.mem, ps.LS, ps.A), "CVodeSetLinearSolver");
-      if (options.jacobian == JacobianKind::AutoDiff) check(CVodeSetJacFn(ps.mem, part_jac), "CVodeSetJacFn");
+      check_cvodes(CVodeSetLinearSolver(ps.mem, ps.LS, ps.A), "CVodeSetLinearSolver");
+      if (options.jacobian == JacobianKind::AutoDiff) check_cvodes(CVodeSetJacFn(ps.mem, part_jac), "CVodeSetJacFn");
     }
     if (!ps.roots.empty()) {
       std::vector<int> dirs;
       for (size_t r : ps.roots) dirs.push_back(roots[r].direction);
-      check(CVodeRootInit(ps.mem, static_cast<int>(ps.roots.size()), part_roots), "CVodeRootInit");
-      check(CVodeSetRootDirection(ps.mem, dirs.data()), "CVodeSetRootDirection");
+      check_cvodes(CVodeRootInit(ps.mem, static_cast<int>(ps.roots.size()), part_roots), "CVodeRootInit");
+      check_cvodes(CVodeSetRootDirection(ps.mem, dirs.data()), "CVodeSetRootDirection");
       CVodeSetNoInactiveRootWarn(ps.mem);
     }
-    check(CVodeSetStopTime(ps.mem, breaks[0]), "CVodeSetStopTime");
+    check_cvodes(CVodeSetStopTime(ps.mem, breaks[0]), "CVodeSetStopTime");
   }
 
   SolveResult res;
@@ -331,7 +324,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
     write_states(x, tau, x.yfull.data());
     for (size_t i = 0; i < x.states.size(); ++i) NV_Ith_S(x.y, i) = x.yfull[x.states[i]];
     x.add_counters();
-    check(CVodeReInit(x.mem, tau, x.y), "CVodeReInit");
+    check_cvodes(CVodeReInit(x.mem, tau, x.y), "CVodeReInit");
     x.t = tau;
     while (x.next_out > first_out && output_times[x.next_out - 1] > tau) --parts_done[--x.next_out];
   };
@@ -343,7 +336,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
     if (!next) return;  // later than the next one: every part is before it
     for (auto& x : run.parts) {
       if (x->t > tau) roll_back(*x, tau);
-      else if (x->t < tau) check(CVodeSetStopTime(x->mem, tau), "CVodeSetStopTime");
+      else if (x->t < tau) check_cvodes(CVodeSetStopTime(x->mem, tau), "CVodeSetStopTime");
     }
     for (size_t id = 0; id < res.events.size(); ++id)
       if (res.events[id].t > tau) discarded[id] = 1;
@@ -390,8 +383,8 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
       const double tb = breaks[next_break++];
       for (auto& ps : run.parts) {
         ps->add_counters();
-        check(CVodeReInit(ps->mem, tb, ps->y), "CVodeReInit");
-        check(CVodeSetStopTime(ps->mem, breaks[next_break]), "CVodeSetStopTime");
+        check_cvodes(CVodeReInit(ps->mem, tb, ps->y), "CVodeReInit");
+        check_cvodes(CVodeSetStopTime(ps->mem, breaks[next_break]), "CVodeSetStopTime");
       }
       ++res.stats.restarts;
       continue;
@@ -420,7 +413,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
     // of a later root of this step, where its state is interpolated.)
     for (int f = flag; f == CV_ROOT_RETURN;) {
       found.assign(ps.roots.size(), 0);
-      check(CVodeGetRootInfo(ps.mem, found.data()), "CVodeGetRootInfo");
+      check_cvodes(CVodeGetRootInfo(ps.mem, found.data()), "CVodeGetRootInfo");
       for (size_t r = 0; r < ps.roots.size(); ++r) {
         if (!found[r]) continue;
         Event e;
@@ -442,7 +435,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
         }
       }
       f = CVode(ps.mem, ps.t, ps.y, &tret, CV_NORMAL);
-      if (f < 0) check(f, "CVode (roots of the last step)");
+      if (f < 0) check_cvodes(f, "CVode (roots of the last step)");
     }
     // Outputs and pending event states up to the time reached.
     while (ps.next_out < n_out && output_times[ps.next_out] <= ps.t) {

@@ -22,6 +22,7 @@
 
 #include "common/error.hpp"
 #include "solver/cvodes_counters.hpp"
+#include "solver/cvodes_setup.hpp"
 #include "solver/matrix_kernels.hpp"
 #include "solver/partitioned_simulator.hpp"
 #include "solver/serial_kernels.hpp"
@@ -237,10 +238,6 @@ struct CvodeHandles {
   }
 };
 
-void check_flag(int flag, const char* what) {
-  if (flag < 0) throw SolverError(std::string("CVODES setup failed in ") + what + " (flag " + std::to_string(flag) + ")");
-}
-
 }  // namespace
 
 Simulator::Simulator(const OdeModel& model, SolverOptions options) : model_(model), options_(options) {}
@@ -334,7 +331,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
   }
 
   CvodeHandles h;
-  check_flag(SUNContext_Create(nullptr, &h.ctx), "SUNContext_Create");
+  check_cvodes(SUNContext_Create(nullptr, &h.ctx), "SUNContext_Create");
   h.y = N_VNew_Serial(n, h.ctx);
   // Clones (CVODES' work vectors, the sensitivity arrays) copy the ops table.
   if (options_.vector_kernels == VectorKernels::Phasmid) install_serial_kernels(h.y);
@@ -344,14 +341,10 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
   h.mem = CVodeCreate(adams ? CV_ADAMS : CV_BDF, h.ctx);
   if (!h.mem) throw SolverError("CVodeCreate failed");
   const double t0 = 0.0;
-  check_flag(CVodeInit(h.mem, rhs_cb, t0, h.y), "CVodeInit");
-  check_flag(CVodeSStolerances(h.mem, options_.rtol, options_.atol), "CVodeSStolerances");
-  check_flag(CVodeSetUserData(h.mem, &d), "CVodeSetUserData");
-  check_flag(CVodeSetMaxNumSteps(h.mem, options_.max_steps), "CVodeSetMaxNumSteps");
-  check_flag(CVodeSetErrHandlerFn(h.mem, [](int, const char*, const char*, char*, void*) {}, nullptr), "silence");
-  if (options_.max_step_ms > 0) check_flag(CVodeSetMaxStep(h.mem, options_.max_step_ms), "CVodeSetMaxStep");
-  if (options_.max_order > 0) check_flag(CVodeSetMaxOrd(h.mem, options_.max_order), "CVodeSetMaxOrd");
-  if (options_.stability_limit_detection) check_flag(CVodeSetStabLimDet(h.mem, SUNTRUE), "CVodeSetStabLimDet");
+  check_cvodes(CVodeInit(h.mem, rhs_cb, t0, h.y), "CVodeInit");
+  check_cvodes(CVodeSStolerances(h.mem, options_.rtol, options_.atol), "CVodeSStolerances");
+  check_cvodes(CVodeSetUserData(h.mem, &d), "CVodeSetUserData");
+  apply_step_options(h.mem, options_);
 
   int bw = model_.jacobian_half_bandwidth();
   bool band = options_.linear_solver == LinearSolverKind::Band && bw >= 0;
@@ -362,7 +355,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
   const bool klu = want_klu && options_.jacobian == JacobianKind::AutoDiff;
   if (adams) {
     h.NLS = SUNNonlinSol_FixedPoint(h.y, 0, h.ctx);
-    check_flag(CVodeSetNonlinearSolver(h.mem, h.NLS), "CVodeSetNonlinearSolver");
+    check_cvodes(CVodeSetNonlinearSolver(h.mem, h.NLS), "CVodeSetNonlinearSolver");
   } else if (band) {
     h.A = SUNBandMatrix(n, bw, bw, h.ctx);
     h.LS = SUNLinSol_Band(h.y, h.A, h.ctx);
@@ -378,9 +371,9 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
     if (klu) install_sparse_kernels(h.A);
     else if (!band) install_dense_kernels(h.A, h.LS);
   }
-  if (!adams) check_flag(CVodeSetLinearSolver(h.mem, h.LS, h.A), "CVodeSetLinearSolver");
+  if (!adams) check_cvodes(CVodeSetLinearSolver(h.mem, h.LS, h.A), "CVodeSetLinearSolver");
   if (!adams && options_.jacobian == JacobianKind::AutoDiff)
-    check_flag(CVodeSetJacFn(h.mem, klu ? jac_sparse_cb : band ? jac_band_cb : jac_dense_cb), "CVodeSetJacFn");
+    check_cvodes(CVodeSetJacFn(h.mem, klu ? jac_sparse_cb : band ? jac_band_cb : jac_dense_cb), "CVodeSetJacFn");
 
   if (ns > 0) {
     h.ns = static_cast<int>(ns);
@@ -398,18 +391,18 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
     }
     int method = options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS;
     if (options_.sensitivity_rhs == SensitivityRhs::Batched && ns > 1)
-      check_flag(CVodeSensInit(h.mem, h.ns, method, sens_rhs_batched_cb, h.yS), "CVodeSensInit");
+      check_cvodes(CVodeSensInit(h.mem, h.ns, method, sens_rhs_batched_cb, h.yS), "CVodeSensInit");
     else
-      check_flag(CVodeSensInit1(h.mem, h.ns, method, sens_rhs_cb, h.yS), "CVodeSensInit1");
+      check_cvodes(CVodeSensInit1(h.mem, h.ns, method, sens_rhs_cb, h.yS), "CVodeSensInit1");
     if (adams) {
       h.NLS_sens = method == CV_STAGGERED ? SUNNonlinSol_FixedPointSens(h.ns + 1, h.y, 0, h.ctx)
                                           : SUNNonlinSol_FixedPointSens(h.ns + 1, h.y, 0, h.ctx);
-      if (method == CV_STAGGERED) check_flag(CVodeSetNonlinearSolverSensStg(h.mem, h.NLS_sens), "CVodeSetNonlinearSolverSensStg");
-      else check_flag(CVodeSetNonlinearSolverSensSim(h.mem, h.NLS_sens), "CVodeSetNonlinearSolverSensSim");
+      if (method == CV_STAGGERED) check_cvodes(CVodeSetNonlinearSolverSensStg(h.mem, h.NLS_sens), "CVodeSetNonlinearSolverSensStg");
+      else check_cvodes(CVodeSetNonlinearSolverSensSim(h.mem, h.NLS_sens), "CVodeSetNonlinearSolverSensSim");
     }
     std::vector<double> pbar(ns);
     for (size_t j = 0; j < ns; ++j) pbar[j] = std::abs(p[sens_params[j]]) > 0 ? std::abs(p[sens_params[j]]) : 1.0;
-    check_flag(CVodeSetSensParams(h.mem, nullptr, pbar.data(), nullptr), "CVodeSetSensParams");
+    check_cvodes(CVodeSetSensParams(h.mem, nullptr, pbar.data(), nullptr), "CVodeSetSensParams");
     if (!options_.sensitivity_atol_scale.empty()) {
       if (options_.sensitivity_atol_scale.size() != n) throw Error("internal: sensitivity_atol_scale size mismatch");
       const double f = options_.sensitivity_tolerance_factor;
@@ -418,22 +411,22 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
         for (size_t i = 0; i < n; ++i) NV_Ith_S(atolS[j], i) = f * options_.atol / pbar[j] * options_.sensitivity_atol_scale[i];
       const int flag = CVodeSensSVtolerances(h.mem, f * options_.rtol, atolS);
       N_VDestroyVectorArray(atolS, h.ns);
-      check_flag(flag, "CVodeSensSVtolerances");
+      check_cvodes(flag, "CVodeSensSVtolerances");
     } else if (options_.sensitivity_tolerance_factor == 1.0) {
-      check_flag(CVodeSensEEtolerances(h.mem), "CVodeSensEEtolerances");
+      check_cvodes(CVodeSensEEtolerances(h.mem), "CVodeSensEEtolerances");
     } else {
       const double f = options_.sensitivity_tolerance_factor;
       std::vector<double> atolS(ns);
       for (size_t j = 0; j < ns; ++j) atolS[j] = f * options_.atol / pbar[j];
-      check_flag(CVodeSensSStolerances(h.mem, f * options_.rtol, atolS.data()), "CVodeSensSStolerances");
+      check_cvodes(CVodeSensSStolerances(h.mem, f * options_.rtol, atolS.data()), "CVodeSensSStolerances");
     }
-    check_flag(CVodeSetSensErrCon(h.mem, options_.sensitivity_error_control ? SUNTRUE : SUNFALSE), "CVodeSetSensErrCon");
+    check_cvodes(CVodeSetSensErrCon(h.mem, options_.sensitivity_error_control ? SUNTRUE : SUNFALSE), "CVodeSetSensErrCon");
   }
   std::vector<int> dirs;
   for (auto& r : all_roots) dirs.push_back(r.direction);
   if (!all_roots.empty()) {
-    check_flag(CVodeRootInit(h.mem, static_cast<int>(all_roots.size()), root_cb), "CVodeRootInit");
-    check_flag(CVodeSetRootDirection(h.mem, dirs.data()), "CVodeSetRootDirection");
+    check_cvodes(CVodeRootInit(h.mem, static_cast<int>(all_roots.size()), root_cb), "CVodeRootInit");
+    check_cvodes(CVodeSetRootDirection(h.mem, dirs.data()), "CVodeSetRootDirection");
     CVodeSetNoInactiveRootWarn(h.mem);
   }
 
@@ -486,7 +479,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
         for (size_t i = 0; i < n; ++i) NV_Ith_S(h.yS[j], i) += (f_before[i] - f_after[i]) * dtau_dp[j];
   };
   std::vector<double> dtau_now(ns, 0.0);  // d tau / dp of commands triggered at the current event
-  check_flag(CVodeSetStopTime(h.mem, breaks[0]), "CVodeSetStopTime");
+  check_cvodes(CVodeSetStopTime(h.mem, breaks[0]), "CVodeSetStopTime");
 
   SolveResult res;
   res.n_states = n;
@@ -511,7 +504,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
     res.steps_at_output.push_back(total_steps());
     for (size_t i = 0; i < n; ++i) res.y.push_back(NV_Ith_S(h.y, i));
     if (ns && options_.sensitivities_at_outputs) {
-      if (fetch_sens) check_flag(CVodeGetSens(h.mem, &t_sens, h.yS), "CVodeGetSens");
+      if (fetch_sens) check_cvodes(CVodeGetSens(h.mem, &t_sens, h.yS), "CVodeGetSens");
       for (size_t i = 0; i < n; ++i)
         for (size_t j = 0; j < ns; ++j) res.s.push_back(NV_Ith_S(h.yS[j], i));
     }
@@ -534,11 +527,11 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
     }
     // Sensitivities are needed at events, at restarts and (if kept) at output times
     // (record_output fetches those).
-    if (ns && (flag == CV_ROOT_RETURN || flag == CV_TSTOP_RETURN)) check_flag(CVodeGetSens(h.mem, &t, h.yS), "CVodeGetSens");
+    if (ns && (flag == CV_ROOT_RETURN || flag == CV_TSTOP_RETURN)) check_cvodes(CVodeGetSens(h.mem, &t, h.yS), "CVodeGetSens");
     bool restart_now = false;
     std::fill(dtau_now.begin(), dtau_now.end(), 0.0);
     if (flag == CV_ROOT_RETURN) {
-      check_flag(CVodeGetRootInfo(h.mem, rootsfound.data()), "CVodeGetRootInfo");
+      check_cvodes(CVodeGetRootInfo(h.mem, rootsfound.data()), "CVodeGetRootInfo");
       model_.rhs(t, N_VGetArrayPointer(h.y), p.data(), ydot.data());
       for (size_t k = 0; k < triggers.size(); ++k) {
         const int dir = rootsfound[roots.size() + k];
@@ -587,7 +580,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
             breaks.insert(at, when);
             dtau.insert(dtau.begin() + static_cast<long>(b), std::vector<double>(ns, 0.0));
             merge_dtau(dtau[b]);
-            check_flag(CVodeSetStopTime(h.mem, breaks[next_break]), "CVodeSetStopTime");
+            check_cvodes(CVodeSetStopTime(h.mem, breaks[next_break]), "CVodeSetStopTime");
           } else {
             merge_dtau(dtau[b - 1]);
           }
@@ -613,13 +606,13 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
       // A trigger set a command time to this very event: the right-hand side changes here.
       steps_before_restarts = total_steps();
       accumulate_counters();
-      check_flag(CVodeReInit(h.mem, t, h.y), "CVodeReInit");
+      check_cvodes(CVodeReInit(h.mem, t, h.y), "CVodeReInit");
       if (ns) {
         // The command switches at the event itself: s(t+) = s(t-) + (f(t-) - f(t+)) d t_event / dp.
         apply_jump(t, dtau_now);
         // Also needed without a jump: at a root return CVODES' own sensitivities are at its
         // internal time beyond the root, the ones fetched above at the root.
-        check_flag(CVodeSensReInit(h.mem, options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS, h.yS), "CVodeSensReInit");
+        check_cvodes(CVodeSensReInit(h.mem, options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS, h.yS), "CVodeSensReInit");
       }
       ++res.stats.restarts;
     }
@@ -628,11 +621,11 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
       // Sensitivities carry over, plus a jump if the switch time moves with p (below).
       steps_before_restarts = total_steps();
       accumulate_counters();
-      check_flag(CVodeReInit(h.mem, t, h.y), "CVodeReInit");
+      check_cvodes(CVodeReInit(h.mem, t, h.y), "CVodeReInit");
       if (ns) apply_jump(t, dtau[next_break]);
-      if (ns) check_flag(CVodeSensReInit(h.mem, options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS, h.yS), "CVodeSensReInit");
+      if (ns) check_cvodes(CVodeSensReInit(h.mem, options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS, h.yS), "CVodeSensReInit");
       ++next_break;
-      check_flag(CVodeSetStopTime(h.mem, breaks[next_break]), "CVodeSetStopTime");
+      check_cvodes(CVodeSetStopTime(h.mem, breaks[next_break]), "CVodeSetStopTime");
       ++res.stats.restarts;
     }
     if (std::abs(t - tout) < 1e-9 * std::max(1.0, std::abs(tout))) {
