@@ -18,6 +18,7 @@
 #include <memory>
 #include <vector>
 
+#include "../model_config_error.hpp"
 #include "common/error.hpp"
 #include "config/config.hpp"
 #include "features/features.hpp"
@@ -239,14 +240,7 @@ TEST(GaitTransitions, LaterRequestCompletes) {
 // (c) Malformed triggers: one-line errors naming file:line and the key or name.
 TEST(GaitTransitions, MalformedTriggerErrors) {
   const std::string head = "[model]\ntype = \"three_legs\"\n";
-  auto error_of = [&](const std::string& triggers) {
-    try {
-      config::build_model(config::parse_config(head + triggers, "bad.toml"));
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto error_of = [&](const std::string& triggers) { return test::model_config_error(head + triggers); };
   auto expect = [&](const std::string& triggers, const std::string& want) {
     const std::string e = error_of(triggers);
     EXPECT_NE(e.find(want), std::string::npos) << e;

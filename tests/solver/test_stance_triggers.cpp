@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "../model_config_error.hpp"
 #include "common/error.hpp"
 #include "config/config.hpp"
 #include "features/features.hpp"
@@ -212,14 +213,7 @@ TEST(StanceTriggers, TetrapodConditionExcludesTheFirstCandidates) {
 // Malformed in_stance: one-line errors naming file:line.
 TEST(StanceTriggers, ConfigErrors) {
   const std::string head3 = head("tripod") + "[[triggers]]\nset = \"gait.switch_ms\"\nevent = \"front.touchdown\"\n";
-  auto error_of = [&](const std::string& extra) {
-    try {
-      config::build_model(config::parse_config(head3 + extra, "bad.toml"));
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto error_of = [&](const std::string& extra) { return test::model_config_error(head3 + extra); };
   auto expect = [&](const std::string& extra, const std::string& want) {
     const std::string e = error_of(extra);
     EXPECT_EQ(e.rfind(want, 0), 0u) << "got: " << e << "\nwant: " << want;
