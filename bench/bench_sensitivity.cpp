@@ -2,10 +2,12 @@
 // Np = 1, 4, 16 parameters and several ways of running them (variants()), against one-sided
 // finite differences (1 + Np runs) measured in the same run; then the accuracy of each
 // variant's feature sensitivities for the network.
-//   build/bench/bench_sensitivity [t_end_ms [t_network_ms [mech,vdp,net,accuracy [variant,...]]]]
-// Three models: the Section 3.1 mechanical FTi joint (2 states, 18 parameters), a chain of
-// 13 van der Pol oscillators (26 states, 16 parameters) and the single-joint FTi network
-// (configs/single_joint_fti.toml, 26 states, spiking motoneurons; default 2500 ms).
+//   build/bench/bench_sensitivity [t_end_ms [t_network_ms [mech,vdp,net,accuracy,rate,rate-accuracy,leg [variant,...]]]]
+// Models: the Section 3.1 mechanical FTi joint (2 states, 18 parameters), a chain of
+// 13 van der Pol oscillators (26 states, 16 parameters), the single-joint FTi network
+// (configs/single_joint_fti.toml, 26 states, spiking motoneurons; default 2500 ms; `rate`:
+// the same with rate motoneurons, 20 states) and the middle leg (`leg`:
+// configs/middle_leg_forward.toml, 78 states, t_network_ms / 5 simulated).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -114,6 +116,10 @@ std::vector<Variant> variants() {
   add("tolS x1e3", [](auto& x) { x.sensitivity_tolerance_factor = 1000.0; });
   add("tolS x1e4", [](auto& x) { x.sensitivity_tolerance_factor = 1e4; });
   add("no-errcon", [](auto& x) { x.sensitivity_error_control = false; });
+  add("stg-noerr", [](auto& x) {
+    x.sensitivity_error_control = false;
+    x.sensitivity_method = solver::SensitivityMethod::Staggered;
+  });
   add("klu", [](auto& x) { x.linear_solver = solver::LinearSolverKind::Klu; });
   add("dense", [](auto& x) { x.linear_solver = solver::LinearSolverKind::Dense; });
   add("+traj", [](auto& x) { x.sensitivities_at_outputs = true; });
@@ -271,8 +277,12 @@ int main(int argc, char** argv) {
     bench("single-joint FTi network, rate motoneurons (motoneuron = \"rate\")", *rate, t_net, 1, net_params);
     if (want("rate-accuracy")) accuracy("single-joint FTi network, rate motoneurons", *rate, t_net, 1000.0, net_params);
   }
-  std::printf("\nColumns: run time / plain run time (default = simultaneous corrector, batched Jet<8> sensitivity right-hand side,\n"
-              "sensitivity error control with EE tolerances, sensitivities fetched at events only); 'steps x' = CVODES\n"
+  if (want("leg")) {  // a larger model: the middle leg's three joint networks, t_network_ms / 5
+    auto leg = config::build_model(config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/middle_leg_forward.toml"));
+    bench("middle leg (configs/middle_leg_forward.toml)", *leg, t_net / 5, 1, net_params);
+  }
+  std::printf("\nColumns: run time / plain run time (default = simultaneous corrector, batched Jet<8>/Jet<4> sensitivity right-hand\n"
+              "side, sensitivity error control with EE tolerances, sensitivities fetched at events only); 'steps x' = CVODES\n"
               "steps of the default / plain steps.\n");
   return 0;
 }

@@ -2,7 +2,9 @@
 // A model assembled into one flat ODE system (AMICI's "Model"): named states, one vector of
 // named parameters, a right-hand side written once as a template and instantiated for
 // double (simulation), Jet<1> (directional derivatives: sensitivity right-hand sides) and
-// Jet<kJacobianChunk> (Jacobian columns in chunks). Time is in ms throughout.
+// Jet<4> / Jet<kJacobianChunk> (several directions at once: Jacobian columns and sensitivity
+// right-hand sides in chunks; Jet<4> for the last chunk when it has at most four, so that a
+// run with two to four parameters does not pay for eight lanes). Time is in ms throughout.
 #include <ceres/jet.h>
 
 #include <memory>
@@ -18,6 +20,7 @@ namespace phasmid::model {
 constexpr int kJacobianChunk = 8;
 using Jet1 = ceres::Jet<double, 1>;
 using JetK = ceres::Jet<double, kJacobianChunk>;
+using Jet4 = ceres::Jet<double, 4>;
 
 // Partitioned integration (solver/partitioned_simulator.hpp): the states split into parts
 // that read each other only through slowly varying states (joint angles), so that each part
@@ -66,6 +69,7 @@ class OdeModel {
   virtual std::vector<double> initial_state(const std::vector<double>& p) const = 0;
   virtual void rhs(double t, const double* y, const double* p, double* ydot) const = 0;
   virtual void rhs(double t, const Jet1* y, const Jet1* p, Jet1* ydot) const = 0;
+  virtual void rhs(double t, const Jet4* y, const Jet4* p, Jet4* ydot) const = 0;
   virtual void rhs(double t, const JetK* y, const JetK* p, JetK* ydot) const = 0;
 
   // Times (ms) at which the right-hand side changes discontinuously by a central command;
@@ -101,7 +105,7 @@ class OdeModel {
 };
 
 // CRTP bridge: Derived implements one `template <class T> void eval(double t, const T* y,
-// const T* p, T* ydot) const`, and gets the three virtual instantiations.
+// const T* p, T* ydot) const`, and gets the four virtual instantiations.
 template <class Derived>
 class OdeModelT : public OdeModel {
  public:
@@ -109,6 +113,9 @@ class OdeModelT : public OdeModel {
     static_cast<const Derived*>(this)->eval(t, y, p, ydot);
   }
   void rhs(double t, const Jet1* y, const Jet1* p, Jet1* ydot) const override {
+    static_cast<const Derived*>(this)->eval(t, y, p, ydot);
+  }
+  void rhs(double t, const Jet4* y, const Jet4* p, Jet4* ydot) const override {
     static_cast<const Derived*>(this)->eval(t, y, p, ydot);
   }
   void rhs(double t, const JetK* y, const JetK* p, JetK* ydot) const override {

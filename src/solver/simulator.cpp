@@ -30,6 +30,7 @@
 
 namespace phasmid::solver {
 using model::Jet1;
+using model::Jet4;
 using model::JetK;
 using model::kJacobianChunk;
 using model::OdeModel;
@@ -44,6 +45,7 @@ struct CallbackData {
   std::vector<size_t> sens_params;
   size_t n;
   std::vector<JetK> yK, pK, fK;
+  std::vector<Jet4> y4, p4, f4;
   std::vector<Jet1> y1, p1, f1;
   long sens_evals = 0;
   // Sparse (KLU) Jacobians: column-compressed pattern and a column colouring (columns of one
@@ -183,27 +185,36 @@ int sens_rhs_cb(int, sunrealtype t, N_Vector y, N_Vector, int is, N_Vector yS, N
   return 0;
 }
 
+// Sensitivity right-hand sides of parameters c0 .. c0+m-1 in one Jet<N> evaluation (m <= N):
+// lane k carries s_{c0+k} and the unit seed of p_{c0+k}.
+template <class J>
+void sens_rhs_chunk(CallbackData* d, std::vector<J>& yJ, std::vector<J>& pJ, std::vector<J>& fJ, sunrealtype t,
+                    const double* yv, int c0, int m, N_Vector* yS, N_Vector* ySdot) {
+  for (size_t i = 0; i < d->n; ++i) yJ[i] = J(yv[i]);
+  for (int k = 0; k < m; ++k) {
+    const double* sv = N_VGetArrayPointer(yS[c0 + k]);
+    for (size_t i = 0; i < d->n; ++i) yJ[i].v[k] = sv[i];
+    pJ[d->sens_params[c0 + k]].v[k] = 1.0;
+  }
+  d->model->rhs(t, yJ.data(), pJ.data(), fJ.data());
+  for (int k = 0; k < m; ++k) {
+    pJ[d->sens_params[c0 + k]].v[k] = 0.0;
+    double* out = N_VGetArrayPointer(ySdot[c0 + k]);
+    for (size_t i = 0; i < d->n; ++i) out[i] = fJ[i].v[k];
+  }
+  d->sens_evals += m;
+}
+
 // All sensitivity right-hand sides at once: chunks of kJacobianChunk parameters share one
-// Jet<kJacobianChunk> evaluation (lane k carries s_{c0+k} and the unit seed of p_{c0+k}).
+// Jet<kJacobianChunk> evaluation, a last chunk of at most four a Jet<4> one.
 int sens_rhs_batched_cb(int ns, sunrealtype t, N_Vector y, N_Vector, N_Vector* yS, N_Vector* ySdot, void* ud,
                         N_Vector, N_Vector) {
   auto* d = static_cast<CallbackData*>(ud);
   const double* yv = N_VGetArrayPointer(y);
   for (int c0 = 0; c0 < ns; c0 += kJacobianChunk) {
     const int m = std::min(kJacobianChunk, ns - c0);
-    for (size_t i = 0; i < d->n; ++i) d->yK[i] = JetK(yv[i]);
-    for (int k = 0; k < m; ++k) {
-      const double* sv = N_VGetArrayPointer(yS[c0 + k]);
-      for (size_t i = 0; i < d->n; ++i) d->yK[i].v[k] = sv[i];
-      d->pK[d->sens_params[c0 + k]].v[k] = 1.0;
-    }
-    d->model->rhs(t, d->yK.data(), d->pK.data(), d->fK.data());
-    for (int k = 0; k < m; ++k) {
-      d->pK[d->sens_params[c0 + k]].v[k] = 0.0;
-      double* out = N_VGetArrayPointer(ySdot[c0 + k]);
-      for (size_t i = 0; i < d->n; ++i) out[i] = d->fK[i].v[k];
-    }
-    d->sens_evals += m;
+    if (m <= 4) sens_rhs_chunk(d, d->y4, d->p4, d->f4, t, yv, c0, m, yS, ySdot);
+    else sens_rhs_chunk(d, d->yK, d->pK, d->fK, t, yv, c0, m, yS, ySdot);
   }
   return 0;
 }
@@ -323,10 +334,13 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
   d.n = n;
   d.yK.resize(n);
   d.fK.resize(n);
+  d.y4.resize(n);
+  d.f4.resize(n);
   d.y1.resize(n);
   d.f1.resize(n);
   for (double v : p) {
     d.pK.emplace_back(v);
+    d.p4.emplace_back(v);
     d.p1.emplace_back(v);
   }
 
@@ -554,6 +568,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
         for (size_t q : tr.targets) {
           p[q] = when;
           d.pK[q] = JetK(when);
+          d.p4[q] = Jet4(when);
           d.p1[q] = Jet1(when);
           res.commands.push_back({q, when, k});
         }
