@@ -25,12 +25,17 @@ TEST(NetworkSensitivity, FeatureSensitivitiesMatchCentralDifferences) {
     for (size_t j = 0; j < o.parameters.size(); ++j) {
       double a = fwd.absolute(f, j), b = fd.absolute(f, j);
       // Well conditioned: the finite difference does not depend on the step (two steps agree
-      // to 0.25%); otherwise it is dominated by event-time noise or a kink.
-      if (std::abs(b - fd2.absolute(f, j)) > 0.0025 * std::abs(b)) continue;
+      // to 0.25%); otherwise it is dominated by event-time noise or a kink. And the feature
+      // moves by more than that noise: d period / d k_F (relative 1.5e-4) changes the period by
+      // 2e-6 ms at h = 3e-5, the size of the event-time noise at 1e-11, so its difference
+      // quotients scatter by +-20 % between steps and builds (and agree by chance in some),
+      // while the forward value is the same to 1e-5 at 1e-10 and 1e-11.
+      if (std::abs(b - fd2.absolute(f, j)) > 0.0025 * std::abs(b) || !(std::abs(fwd.relative(f, j)) > 0.01)) continue;
       EXPECT_NEAR(a, b, 0.01 * std::abs(b)) << fwd.features[f].name << " / " << o.parameters[j];
       ++compared;
     }
   }
+  std::printf("compared %d feature/parameter pairs\n", compared);
   EXPECT_GE(compared, 6);
 }
 
