@@ -37,6 +37,19 @@ using model::OdeModel;
 
 namespace {
 
+// Scratch vectors of one scalar type for model evaluations: states, parameters (their values;
+// derivative lanes are seeded and cleared around each evaluation) and right-hand side.
+template <class J>
+struct JetScratch {
+  std::vector<J> y, p, f;
+  void init(size_t n, const std::vector<double>& values) {
+    y.assign(n, J(0.0));
+    f.assign(n, J(0.0));
+    p.clear();
+    for (double v : values) p.emplace_back(v);
+  }
+};
+
 // Everything the C callbacks need; lives for one run().
 struct CallbackData {
   const OdeModel* model;
@@ -44,9 +57,20 @@ struct CallbackData {
   const std::vector<RootSpec>* roots;
   std::vector<size_t> sens_params;
   size_t n;
-  std::vector<JetK> yK, pK, fK;
-  std::vector<Jet4> y4, p4, f4;
-  std::vector<Jet1> y1, p1, f1;
+  JetScratch<JetK> jK;  // Jacobian columns, sensitivity chunks of five to eight
+  JetScratch<Jet4> j4;  // sensitivity chunks of two to four
+  JetScratch<Jet1> j1;  // one sensitivity
+  void init_scratch(const std::vector<double>& values) {
+    jK.init(n, values);
+    j4.init(n, values);
+    j1.init(n, values);
+  }
+  // A parameter set during the run (a triggered command time).
+  void set_parameter(size_t q, double value) {
+    jK.p[q] = JetK(value);
+    j4.p[q] = Jet4(value);
+    j1.p[q] = Jet1(value);
+  }
   long sens_evals = 0;
   // Sparse (KLU) Jacobians: column-compressed pattern and a column colouring (columns of one
   // colour share no row, so one AD direction per colour gives all of them: Curtis-Powell-Reid).
@@ -68,12 +92,12 @@ void fill_jacobian(CallbackData* d, double t, const double* y, double* J) {
   const size_t n = d->n;
   for (size_t c0 = 0; c0 < n; c0 += kJacobianChunk) {
     for (size_t i = 0; i < n; ++i) {
-      d->yK[i] = JetK(y[i]);
-      if (i >= c0 && i < c0 + kJacobianChunk) d->yK[i].v[i - c0] = 1.0;
+      d->jK.y[i] = JetK(y[i]);
+      if (i >= c0 && i < c0 + kJacobianChunk) d->jK.y[i].v[i - c0] = 1.0;
     }
-    d->model->rhs(t, d->yK.data(), d->pK.data(), d->fK.data());
+    d->model->rhs(t, d->jK.y.data(), d->jK.p.data(), d->jK.f.data());
     for (size_t k = 0; k < kJacobianChunk && c0 + k < n; ++k)
-      for (size_t i = 0; i < n; ++i) J[(c0 + k) * n + i] = d->fK[i].v[k];
+      for (size_t i = 0; i < n; ++i) J[(c0 + k) * n + i] = d->jK.f[i].v[k];
   }
 }
 
@@ -101,13 +125,13 @@ int jac_band_cb(sunrealtype t, N_Vector y, N_Vector, SUNMatrix Jm, void* ud, N_V
 void fill_sparse_jacobian(CallbackData* d, double t, const double* yv, double* v) {
   for (size_t c0 = 0; c0 < d->n_colors; c0 += kJacobianChunk) {
     for (size_t i = 0; i < d->n; ++i) {
-      d->yK[i] = JetK(yv[i]);
-      if (d->color[i] >= c0 && d->color[i] < c0 + kJacobianChunk) d->yK[i].v[d->color[i] - c0] = 1.0;
+      d->jK.y[i] = JetK(yv[i]);
+      if (d->color[i] >= c0 && d->color[i] < c0 + kJacobianChunk) d->jK.y[i].v[d->color[i] - c0] = 1.0;
     }
-    d->model->rhs(t, d->yK.data(), d->pK.data(), d->fK.data());
+    d->model->rhs(t, d->jK.y.data(), d->jK.p.data(), d->jK.f.data());
     for (size_t j = 0; j < d->n; ++j) {
       if (d->color[j] < c0 || d->color[j] >= c0 + kJacobianChunk) continue;
-      for (sunindextype k = d->col_ptr[j]; k < d->col_ptr[j + 1]; ++k) v[k] = d->fK[d->row_idx[k]].v[d->color[j] - c0];
+      for (sunindextype k = d->col_ptr[j]; k < d->col_ptr[j + 1]; ++k) v[k] = d->jK.f[d->row_idx[k]].v[d->color[j] - c0];
     }
   }
 }
@@ -172,15 +196,15 @@ int sens_rhs_cb(int, sunrealtype t, N_Vector y, N_Vector, int is, N_Vector yS, N
   const double* yv = N_VGetArrayPointer(y);
   const double* sv = N_VGetArrayPointer(yS);
   for (size_t i = 0; i < d->n; ++i) {
-    d->y1[i] = Jet1(yv[i]);
-    d->y1[i].v[0] = sv[i];
+    d->j1.y[i] = Jet1(yv[i]);
+    d->j1.y[i].v[0] = sv[i];
   }
   size_t k = d->sens_params[is];
-  d->p1[k].v[0] = 1.0;
-  d->model->rhs(t, d->y1.data(), d->p1.data(), d->f1.data());
-  d->p1[k].v[0] = 0.0;
+  d->j1.p[k].v[0] = 1.0;
+  d->model->rhs(t, d->j1.y.data(), d->j1.p.data(), d->j1.f.data());
+  d->j1.p[k].v[0] = 0.0;
   double* out = N_VGetArrayPointer(ySdot);
-  for (size_t i = 0; i < d->n; ++i) out[i] = d->f1[i].v[0];
+  for (size_t i = 0; i < d->n; ++i) out[i] = d->j1.f[i].v[0];
   ++d->sens_evals;
   return 0;
 }
@@ -188,19 +212,19 @@ int sens_rhs_cb(int, sunrealtype t, N_Vector y, N_Vector, int is, N_Vector yS, N
 // Sensitivity right-hand sides of parameters c0 .. c0+m-1 in one Jet<N> evaluation (m <= N):
 // lane k carries s_{c0+k} and the unit seed of p_{c0+k}.
 template <class J>
-void sens_rhs_chunk(CallbackData* d, std::vector<J>& yJ, std::vector<J>& pJ, std::vector<J>& fJ, sunrealtype t,
-                    const double* yv, int c0, int m, N_Vector* yS, N_Vector* ySdot) {
-  for (size_t i = 0; i < d->n; ++i) yJ[i] = J(yv[i]);
+void sens_rhs_chunk(CallbackData* d, JetScratch<J>& w, sunrealtype t, const double* yv, int c0, int m, N_Vector* yS,
+                    N_Vector* ySdot) {
+  for (size_t i = 0; i < d->n; ++i) w.y[i] = J(yv[i]);
   for (int k = 0; k < m; ++k) {
     const double* sv = N_VGetArrayPointer(yS[c0 + k]);
-    for (size_t i = 0; i < d->n; ++i) yJ[i].v[k] = sv[i];
-    pJ[d->sens_params[c0 + k]].v[k] = 1.0;
+    for (size_t i = 0; i < d->n; ++i) w.y[i].v[k] = sv[i];
+    w.p[d->sens_params[c0 + k]].v[k] = 1.0;
   }
-  d->model->rhs(t, yJ.data(), pJ.data(), fJ.data());
+  d->model->rhs(t, w.y.data(), w.p.data(), w.f.data());
   for (int k = 0; k < m; ++k) {
-    pJ[d->sens_params[c0 + k]].v[k] = 0.0;
+    w.p[d->sens_params[c0 + k]].v[k] = 0.0;
     double* out = N_VGetArrayPointer(ySdot[c0 + k]);
-    for (size_t i = 0; i < d->n; ++i) out[i] = fJ[i].v[k];
+    for (size_t i = 0; i < d->n; ++i) out[i] = w.f[i].v[k];
   }
   d->sens_evals += m;
 }
@@ -213,8 +237,8 @@ int sens_rhs_batched_cb(int ns, sunrealtype t, N_Vector y, N_Vector, N_Vector* y
   const double* yv = N_VGetArrayPointer(y);
   for (int c0 = 0; c0 < ns; c0 += kJacobianChunk) {
     const int m = std::min(kJacobianChunk, ns - c0);
-    if (m <= 4) sens_rhs_chunk(d, d->y4, d->p4, d->f4, t, yv, c0, m, yS, ySdot);
-    else sens_rhs_chunk(d, d->yK, d->pK, d->fK, t, yv, c0, m, yS, ySdot);
+    if (m <= 4) sens_rhs_chunk(d, d->j4, t, yv, c0, m, yS, ySdot);
+    else sens_rhs_chunk(d, d->jK, t, yv, c0, m, yS, ySdot);
   }
   return 0;
 }
@@ -268,9 +292,7 @@ CallbackData jacobian_data(const OdeModel& model, const std::vector<double>& p) 
   d.model = &model;
   d.p = &p;
   d.n = model.num_states();
-  d.yK.resize(d.n);
-  d.fK.resize(d.n);
-  for (double v : p) d.pK.emplace_back(v);
+  d.jK.init(d.n, p);
   return d;
 }
 }  // namespace
@@ -332,17 +354,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
   d.roots = &all_roots;
   d.sens_params = sens_params;
   d.n = n;
-  d.yK.resize(n);
-  d.fK.resize(n);
-  d.y4.resize(n);
-  d.f4.resize(n);
-  d.y1.resize(n);
-  d.f1.resize(n);
-  for (double v : p) {
-    d.pK.emplace_back(v);
-    d.p4.emplace_back(v);
-    d.p1.emplace_back(v);
-  }
+  d.init_scratch(p);
 
   CvodeHandles h;
   check_cvodes(SUNContext_Create(nullptr, &h.ctx), "SUNContext_Create");
@@ -567,9 +579,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
         }
         for (size_t q : tr.targets) {
           p[q] = when;
-          d.pK[q] = JetK(when);
-          d.p4[q] = Jet4(when);
-          d.p1[q] = Jet1(when);
+          d.set_parameter(q, when);
           res.commands.push_back({q, when, k});
         }
         // Two commands switching at one time with different d tau / dp have no single jump.
