@@ -189,44 +189,33 @@ void sparsity_pattern(CallbackData* d, const std::vector<double>& y0) {
   }
 }
 
-// One sensitivity right-hand side: J s_is + df/dp_is, as a single directional derivative.
-int sens_rhs_cb(int, sunrealtype t, N_Vector y, N_Vector, int is, N_Vector yS, N_Vector ySdot, void* ud, N_Vector,
-                N_Vector) {
-  auto* d = static_cast<CallbackData*>(ud);
-  const double* yv = N_VGetArrayPointer(y);
-  const double* sv = N_VGetArrayPointer(yS);
-  for (size_t i = 0; i < d->n; ++i) {
-    d->j1.y[i] = Jet1(yv[i]);
-    d->j1.y[i].v[0] = sv[i];
-  }
-  size_t k = d->sens_params[is];
-  d->j1.p[k].v[0] = 1.0;
-  d->model->rhs(t, d->j1.y.data(), d->j1.p.data(), d->j1.f.data());
-  d->j1.p[k].v[0] = 0.0;
-  double* out = N_VGetArrayPointer(ySdot);
-  for (size_t i = 0; i < d->n; ++i) out[i] = d->j1.f[i].v[0];
-  ++d->sens_evals;
-  return 0;
-}
-
-// Sensitivity right-hand sides of parameters c0 .. c0+m-1 in one Jet<N> evaluation (m <= N):
-// lane k carries s_{c0+k} and the unit seed of p_{c0+k}.
+// Sensitivity right-hand sides J s + df/dp of the m parameters first .. first+m-1 (yS[k],
+// ySdot[k] belong to parameter first+k) in one Jet<N> evaluation, m <= N: lane k carries
+// yS[k] and the unit seed of that parameter.
 template <class J>
-void sens_rhs_chunk(CallbackData* d, JetScratch<J>& w, sunrealtype t, const double* yv, int c0, int m, N_Vector* yS,
-                    N_Vector* ySdot) {
+void sens_rhs_chunk(CallbackData* d, JetScratch<J>& w, sunrealtype t, const double* yv, int first, int m,
+                    const N_Vector* yS, N_Vector* ySdot) {
   for (size_t i = 0; i < d->n; ++i) w.y[i] = J(yv[i]);
   for (int k = 0; k < m; ++k) {
-    const double* sv = N_VGetArrayPointer(yS[c0 + k]);
+    const double* sv = N_VGetArrayPointer(yS[k]);
     for (size_t i = 0; i < d->n; ++i) w.y[i].v[k] = sv[i];
-    w.p[d->sens_params[c0 + k]].v[k] = 1.0;
+    w.p[d->sens_params[first + k]].v[k] = 1.0;
   }
   d->model->rhs(t, w.y.data(), w.p.data(), w.f.data());
   for (int k = 0; k < m; ++k) {
-    w.p[d->sens_params[c0 + k]].v[k] = 0.0;
-    double* out = N_VGetArrayPointer(ySdot[c0 + k]);
+    w.p[d->sens_params[first + k]].v[k] = 0.0;
+    double* out = N_VGetArrayPointer(ySdot[k]);
     for (size_t i = 0; i < d->n; ++i) out[i] = w.f[i].v[k];
   }
   d->sens_evals += m;
+}
+
+// One sensitivity right-hand side (CVodeSensInit1): a Jet<1> evaluation.
+int sens_rhs_cb(int, sunrealtype t, N_Vector y, N_Vector, int is, N_Vector yS, N_Vector ySdot, void* ud, N_Vector,
+                N_Vector) {
+  auto* d = static_cast<CallbackData*>(ud);
+  sens_rhs_chunk(d, d->j1, t, N_VGetArrayPointer(y), is, 1, &yS, &ySdot);
+  return 0;
 }
 
 // All sensitivity right-hand sides at once: chunks of kJacobianChunk parameters share one
@@ -237,8 +226,8 @@ int sens_rhs_batched_cb(int ns, sunrealtype t, N_Vector y, N_Vector, N_Vector* y
   const double* yv = N_VGetArrayPointer(y);
   for (int c0 = 0; c0 < ns; c0 += kJacobianChunk) {
     const int m = std::min(kJacobianChunk, ns - c0);
-    if (m <= 4) sens_rhs_chunk(d, d->j4, t, yv, c0, m, yS, ySdot);
-    else sens_rhs_chunk(d, d->jK, t, yv, c0, m, yS, ySdot);
+    if (m <= 4) sens_rhs_chunk(d, d->j4, t, yv, c0, m, yS + c0, ySdot + c0);
+    else sens_rhs_chunk(d, d->jK, t, yv, c0, m, yS + c0, ySdot + c0);
   }
   return 0;
 }
