@@ -13,6 +13,7 @@
 #include "fit/fit_config.hpp"
 #include "fit/fit_problem.hpp"
 #include "fit/optimizer.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 

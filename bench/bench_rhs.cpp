@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "config/config.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 

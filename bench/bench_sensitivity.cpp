@@ -24,6 +24,7 @@
 #include "model/mechanical_joint_model.hpp"
 #include "sensitivity/sensitivity.hpp"
 #include "solver/simulator.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 

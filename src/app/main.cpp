@@ -4,6 +4,7 @@
 
 #include "app/verb.hpp"
 #include "common/error.hpp"
+#include "build_info.hpp"
 
 namespace phasmid::app {
 std::vector<Verb>& verbs() {

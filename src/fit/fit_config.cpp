@@ -6,6 +6,7 @@
 #include <set>
 
 #include "common/error.hpp"
+#include "build_info.hpp"
 
 namespace phasmid::fit {
 namespace fs = std::filesystem;

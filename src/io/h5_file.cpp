@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "common/error.hpp"
+#include "build_info.hpp"
 
 namespace phasmid::io {
 namespace {

@@ -7,6 +7,7 @@
 
 #include "common/embedded.hpp"
 #include "common/error.hpp"
+#include "build_info.hpp"
 
 namespace phasmid::simroach2 {
 namespace {

@@ -10,6 +10,7 @@
 #include "common/error.hpp"
 #include "cruse/cruse1980_parameters.hpp"
 #include "io/h5_file.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid::cruse;
 namespace fs = std::filesystem;

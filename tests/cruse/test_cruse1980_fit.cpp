@@ -10,6 +10,7 @@
 #include "cruse/cruse1980_fit.hpp"
 #include "cruse/cruse1980_sweep.hpp"
 #include "fit/fit_run.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 using namespace phasmid::cruse;

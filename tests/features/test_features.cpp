@@ -16,6 +16,7 @@
 #include "features/features.hpp"
 #include "io/h5_file.hpp"
 #include "model/mechanical_joint_model.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 

@@ -11,6 +11,7 @@
 #include "fit/fit_problem.hpp"
 #include "fit/kinematic_data.hpp"
 #include "fit/parameter_table.hpp"
+#include "build_info.hpp"
 
 namespace phasmid::fittest {
 

@@ -6,6 +6,7 @@
 #include "config/config.hpp"
 #include "model/coupled_ctr_fti_model.hpp"
 #include "solver/simulator.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "config/config.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 

@@ -22,6 +22,7 @@
 #include "common/error.hpp"
 #include "config/config.hpp"
 #include "features/features.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 

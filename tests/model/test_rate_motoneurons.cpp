@@ -13,6 +13,7 @@
 #include "config/config.hpp"
 #include "features/features.hpp"
 #include "model/network_builder.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 

@@ -10,6 +10,7 @@
 
 #include "config/config.hpp"
 #include "features/features.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 

@@ -9,6 +9,7 @@
 
 #include "config/config.hpp"
 #include "features/features.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 

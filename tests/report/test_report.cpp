@@ -20,6 +20,7 @@
 #include "common/error.hpp"
 #include "report/report.hpp"
 #include "report_fixtures.hpp"
+#include "build_info.hpp"
 
 namespace fs = std::filesystem;
 using phasmid::report::extract;

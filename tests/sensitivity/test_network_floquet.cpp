@@ -11,6 +11,7 @@
 
 #include "config/config.hpp"
 #include "sensitivity/floquet.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 

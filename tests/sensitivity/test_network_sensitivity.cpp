@@ -7,6 +7,7 @@
 
 #include "config/config.hpp"
 #include "fd_check.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 

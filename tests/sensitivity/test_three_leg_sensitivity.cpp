@@ -8,6 +8,7 @@
 
 #include "config/config.hpp"
 #include "sensitivity/job.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 

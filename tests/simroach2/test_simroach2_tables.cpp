@@ -12,6 +12,7 @@
 #include "common/error.hpp"
 #include "simroach2/muscle_check.hpp"
 #include "simroach2/tables.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid::simroach2;
 

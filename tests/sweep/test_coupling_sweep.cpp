@@ -17,6 +17,7 @@
 #include "config/config.hpp"
 #include "io/h5_file.hpp"
 #include "sweep/sweep_runner.hpp"
+#include "build_info.hpp"
 
 using namespace phasmid;
 namespace fs = std::filesystem;

@@ -18,6 +18,7 @@
 #include "config/config.hpp"
 #include "io/h5_file.hpp"
 #include "sweep/sweep_runner.hpp"
+#include "build_info.hpp"
 
 extern char** environ;
 using namespace phasmid;
