@@ -1,0 +1,142 @@
+#!/usr/bin/env bash
+# phasmid vs Brian2 on the isolated FTi joint network (configs/single_joint_fti.toml, 26
+# states, 9 s of model time): run time and feature accuracy, one table (docs/benchmarks.md,
+# "phasmid vs Brian2").
+#
+#   bash bench/bench_brian2.sh [REPEATS]          (default 3; PHASMID=path overrides build/phasmid)
+#
+# Every row is checked against a tight-tolerance phasmid reference (rtol = atol = 1e-12):
+# period and mean extremal FTi angles over [discard_ms, t_end_ms] = [2000, 9000] ms. Times are
+# CPU seconds of the solve only, minima over REPEATS runs: Brian2's standalone run clock
+# (std::clock around the network run; code generation and compilation reported apart), and
+# phasmid's process CPU time minus that of the same process for 1 ms of model time (start,
+# config, model assembly), so that load from other processes does not count (phasmid's own
+# solve clock is wall time). "process s" is the CPU time of the whole process of one run
+# (phasmid: start, config, solve, HDF5 output; Brian2: the compiled binary).
+# Needs Debian's Python with Brian2 (apt-get install -y python3-brian python3-numpy
+# libgsl-dev).
+set -euo pipefail
+REPEATS=${1:-3}
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+PHASMID=${PHASMID:-$ROOT/build/phasmid}
+PY=/usr/bin/python3
+BRIAN=$ROOT/bench/brian2/single_joint_fti.py
+CONFIG=$ROOT/configs/single_joint_fti.toml
+SHIPPED_TOL=$(sed -n 's/^rtol *= *//p' "$CONFIG")
+PHASMID_TOLS=${PHASMID_TOLS:-"1e-4 1e-5 1e-6 1e-7 1e-8 1e-9 1e-10"}
+RK4_DTS=${RK4_DTS:-"0.05 0.025 0.01 0.005"}
+GSL_ERRORS=${GSL_ERRORS:-"1e-2 1e-3 1e-4 1e-5 1e-6"}
+GSL_DT=${GSL_DT:-1}  # Brian2 clock dt of the GSL runs, ms (the GSL driver is restarted every dt)
+
+[ -x "$PHASMID" ] || { echo "bench_brian2: $PHASMID not found (build it: cmake --build build --target phasmid)" >&2; exit 1; }
+$PY -c "import brian2, numpy" 2>/dev/null || { echo "bench_brian2: $PY lacks brian2/numpy (apt-get install -y python3-brian python3-numpy libgsl-dev)" >&2; exit 1; }
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+ROWS=$TMP/rows.jsonl
+
+# Minimum over REPEATS runs of the CPU time (user + system) of `phasmid simulate CFG`.
+process_cpu() {
+  local best=""
+  for _ in $(seq "$REPEATS"); do
+    { TIMEFORMAT='%U %S'; time "$PHASMID" simulate "$1" -o "$2" -q; } 2> "$TMP/time.txt"
+    best+="$(tail -1 "$TMP/time.txt" | awk '{print $1 + $2}') "
+  done
+  echo "$best" | tr ' ' '\n' | grep . | sort -g | head -1
+}
+
+# One phasmid row: simulate REPEATS times at rtol = atol = TOL, JSON line with times and features.
+phasmid_row() {
+  local label=$1 tol=$2 h5=$TMP/phasmid_$2.h5 cfg=$TMP/phasmid_$2.toml
+  sed -e "s/^rtol *=.*/rtol = $tol/" -e "s/^atol *=.*/atol = $tol/" "$CONFIG" > "$cfg"
+  local proc
+  proc=$(process_cpu "$cfg" "$h5")
+  "$PHASMID" features "$h5" --json > "$TMP/features.json"
+  $PY - "$label" "$tol" "$proc" "$OVERHEAD" "$TMP/features.json" >> "$ROWS" <<'EOF'
+import json, sys
+label, tol, proc, overhead, fj = sys.argv[1:]
+f = {x["name"]: x["value"] for x in json.load(open(fj))}
+print(json.dumps({"tool": "phasmid", "label": label, "tol": float(tol),
+                  "run_s": float(proc) - float(overhead), "process_s": float(proc),
+                  "period_ms": f["middle.fti.period_ms"], "angle_max_deg": f["middle.fti.angle_max_deg"],
+                  "angle_min_deg": f["middle.fti.angle_min_deg"]}))
+EOF
+}
+
+# One Brian2 row: compile once, run REPEATS times.
+brian_row() {
+  local label=$1; shift
+  local out
+  if out=$($PY "$BRIAN" --repeats "$REPEATS" --dir "$TMP/brian2_project" "$@" 2> "$TMP/brian2.log" | tail -1); then :; fi
+  [ -n "$out" ] || out='{"error": "failed (see the log)"}'
+  $PY - "$label" "$out" >> "$ROWS" <<'EOF'
+import json, sys
+label, out = sys.argv[1:]
+r = json.loads(out)
+row = {"tool": "brian2", "label": label}
+if "error" in r:
+    row["error"] = r["error"]
+else:
+    row.update(run_s=r["run_cpu_s_min"], process_s=min(r["process_cpu_s"]), compile_s=r["compile_s"],
+               period_ms=r.get("period_ms"), angle_max_deg=r.get("angle_max_deg"), angle_min_deg=r.get("angle_min_deg"))
+print(json.dumps(row))
+EOF
+  rm -rf "$TMP/brian2_project"
+}
+
+echo "bench_brian2: phasmid start-up CPU (1 ms of model time) ..." >&2
+sed -e "s/^t_end_ms *=.*/t_end_ms = 1/" -e "s/^discard_ms *=.*/discard_ms = 0/" "$CONFIG" > "$TMP/overhead.toml"
+OVERHEAD=$(process_cpu "$TMP/overhead.toml" "$TMP/overhead.h5")
+echo "bench_brian2: reference (phasmid, rtol = atol = 1e-12) ..." >&2
+REPEATS_SAVED=$REPEATS; REPEATS=1
+phasmid_row "reference" 1e-12
+REPEATS=$REPEATS_SAVED
+for tol in $PHASMID_TOLS; do
+  echo "bench_brian2: phasmid rtol = atol = $tol ..." >&2
+  label="phasmid CVODES BDF, rtol = atol = $tol"
+  [ "$tol" = "$SHIPPED_TOL" ] && label+=" (shipped)"
+  phasmid_row "$label" "$tol"
+done
+for dt in $RK4_DTS; do
+  echo "bench_brian2: Brian2 RK4 dt = $dt ms ..." >&2
+  brian_row "Brian2 standalone RK4, dt = $dt ms" --method rk4 --dt "$dt"
+done
+for e in $GSL_ERRORS; do
+  echo "bench_brian2: Brian2 GSL RKF45 absolute error $e ..." >&2
+  brian_row "Brian2 standalone GSL RKF45, abs. error $e (dt = $GSL_DT ms)" --method rkf45 --error "$e" --dt "$GSL_DT"
+done
+
+$PY - "$ROWS" "$REPEATS" "$OVERHEAD" <<'EOF'
+import json, sys
+rows = [json.loads(l) for l in open(sys.argv[1])]
+ref = rows[0]
+print(f"# bench_brian2: FTi single joint, 9000 ms, features over 2000-9000 ms, min of {sys.argv[2]} runs;")
+print(f"# phasmid run s = process CPU - {float(sys.argv[3]):.3f} s start-up (1 ms of model time)")
+print(f"# reference phasmid rtol = atol = 1e-12: period {ref['period_ms']:.6f} ms, "
+      f"angles {ref['angle_min_deg']:.6f} / {ref['angle_max_deg']:.6f} deg")
+print("| run | run s | process s | compile s | period err ms | max err deg | min err deg | matched |")
+print("|---|---:|---:|---:|---:|---:|---:|:---:|")
+matched = []
+for r in rows[1:]:
+    if "error" in r or r.get("period_ms") is None:
+        print(f"| {r['label']} | | | | {r.get('error', 'no features')} | | | |")
+        continue
+    dp = r["period_ms"] - ref["period_ms"]
+    dmax = r["angle_max_deg"] - ref["angle_max_deg"]
+    dmin = r["angle_min_deg"] - ref["angle_min_deg"]
+    ok = abs(dp) <= 0.01 and abs(dmax) <= 0.01 and abs(dmin) <= 0.01
+    r["ok"] = ok
+    comp = f"{r['compile_s']:.1f}" if "compile_s" in r else ""
+    print(f"| {r['label']} | {r['run_s']:.3f} | {r['process_s']:.3f} | {comp} | {dp:+.5f} | {dmax:+.5f} | {dmin:+.5f} | {'yes' if ok else 'no'} |")
+def fastest(tool, only_ok=True):
+    c = [r for r in rows[1:] if r["tool"] == tool and "run_s" in r and (r.get("ok") or not only_ok)]
+    return min(c, key=lambda r: r["run_s"]) if c else None
+shipped = next((r for r in rows if "(shipped)" in r["label"]), None)
+pm, bm = fastest("phasmid"), fastest("brian2")
+print()
+if shipped and bm:
+    print(f"phasmid shipped / fastest matched Brian2 ({bm['label']}): {shipped['run_s'] / bm['run_s']:.2f}x the time")
+if pm and bm:
+    print(f"fastest matched phasmid ({pm['label']}) / fastest matched Brian2: {pm['run_s'] / bm['run_s']:.2f}x the time")
+print("(matched: period within 0.01 ms and both mean extremal angles within 0.01 deg of the reference; "
+      "> 1x: phasmid is slower)")
+EOF
