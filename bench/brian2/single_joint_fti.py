@@ -9,8 +9,9 @@ Usage (Debian's Python: apt-get install -y python3-brian python3-numpy libgsl-de
 
 Prints one JSON object: the compile time (code generation and C++ build) apart from the run
 times (the standalone binary's own CPU clock around the network run), and the features of
-docs/features.md computed from the FTi angle over the window [discard_ms, t_end_ms]: period,
-mean extremal angles, flexion fraction.
+docs/features.md computed from the FTi angle over the window [discard_ms, t_end_ms]:
+`fti.period_ms`, the mean extremal angles `fti.angle_min_deg`, `fti.angle_max_deg`,
+`fti.flexion_fraction`.
 
 All 26 states are one Brian2 NeuronGroup of size 1, so that RK4 and the GSL integrator step
 the whole coupled system (Brian2 synapses would hold the synaptic currents constant over each
@@ -101,30 +102,31 @@ def boltz(V, V_half, slope):
     return f"1.0/(1.0 + exp({f(slope)}*({V} - ({f(V_half)}))))"
 
 
-def synaptic_current(post):
-    terms = []
-    for pre, q, cls in SYNAPSES:
-        if q != post:
-            continue
-        g, Vh, gam, E = SYN[cls]
-        terms.append(f"{f(g)}*{boltz('V_' + pre, Vh, gam)}*(V_{post} - ({f(E)}))")
+def synaptic_current(post, synapses=None):
+    """Sum of (2.7) over the synapses onto `post`: (pre, post, (g, V_h, gamma, E)) tuples,
+    by default this network's SYNAPSES with their Table A.4 classes."""
+    if synapses is None:
+        synapses = [(pre, q, SYN[cls]) for pre, q, cls in SYNAPSES]
+    terms = [f"{f(g)}*{boltz('V_' + pre, Vh, gam)}*(V_{post} - ({f(E)}))" for pre, q, (g, Vh, gam, E) in synapses if q == post]
     return " + ".join(terms) if terms else "0.0"
 
 
-def nap_equations(name, q, p):
+def nap_equations(name, q, p, synapses=None, extra_drive=None):
+    """extra_drive: an expression (nS) added to g_app (modulations)."""
     g_NaP, g_L, g_app, E_app, eps, C_m, V_hh, _, _ = q
     V = "V_" + name
+    drive = f"({f(g_app)} + {extra_drive})" if extra_drive else f(g_app)
     m_inf = boltz(V, p["V_hm"], p["gamma_m"])
     h_inf = boltz(V, V_hh, p["gamma_h"])
     return [
         f"dV_{name}/dt = -({f(g_NaP)}*{m_inf}*h_{name}*({V} - ({f(p['E_Na'])})) + {f(g_L)}*({V} - ({f(p['E_L'])}))"
-        f" + I_{name} + {f(g_app)}*({V} - ({f(E_app)})))/{f(C_m)}/ms : 1",
+        f" + I_{name} + {drive}*({V} - ({f(E_app)})))/{f(C_m)}/ms : 1",
         f"dh_{name}/dt = {f(eps)}*({h_inf} - h_{name})*cosh({f(p['gamma_tau'])}*({V} - ({f(p['V_tau_h'])})))/ms : 1",
-        f"I_{name} = {synaptic_current(name)} : 1",
+        f"I_{name} = {synaptic_current(name, synapses)} : 1",
     ]
 
 
-def mn_equations(n, p):
+def mn_equations(n, p, synapses=None):
     V = "V_" + n
 
     def exprel_ratio(scale, V0, c):
@@ -148,7 +150,7 @@ def mn_equations(n, p):
         f"dhNa_{n}/dt = ({a_h}*(1.0 - hNa_{n}) - {b_h}*hNa_{n})/ms : 1",
         f"dmK_{n}/dt = ({a_k}*(1.0 - mK_{n}) - {b_k}*mK_{n})/ms : 1",
         f"dmq_{n}/dt = {f(p['mn.r_q'])}*({mq_inf} - mq_{n})/ms : 1",
-        f"I_{n} = {synaptic_current(n)} : 1",
+        f"I_{n} = {synaptic_current(n, synapses)} : 1",
     ]
 
 
@@ -268,6 +270,11 @@ def features(t, ang, omg, discard_ms):
 
 
 # ---- Brian2 ---------------------------------------------------------------------------------
+# GSL steps allowed per clock dt (Brian2's default, 100, makes tight error bounds fail at
+# dt = 1 ms during MN spikes).
+GSL_MAX_STEPS = 100000
+
+
 class stdout_to_stderr:
     """Redirects file descriptor 1 (also of child processes such as make) to 2."""
 
@@ -317,7 +324,7 @@ def run_brian2(a):
     if a.method == "rk4":
         method, options = "rk4", {}
     else:
-        method, options = "gsl_rkf45", {"absolute_error": a.error}
+        method, options = "gsl_rkf45", {"absolute_error": a.error, "max_steps": GSL_MAX_STEPS}
     G = b2.NeuronGroup(1, eqs, method=method, method_options=options, name="fti")
     for k, v in initial_state(P).items():
         setattr(G, k, v)
@@ -364,7 +371,7 @@ def main():
            "directory": directory}
     if a.method == "rkf45":
         res["absolute_error"] = a.error
-    res.update(features(t, ang, omg, a.discard))
+    res.update({"fti." + k: v for k, v in features(t, ang, omg, a.discard).items()})
     print(json.dumps(res))
     return 0
 
