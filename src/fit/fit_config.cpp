@@ -17,13 +17,7 @@ using config::text;
 
 namespace {
 
-bool boolean(const config::Config& cfg, const toml::node& n, const std::string& key) {
-  if (auto v = n.value<bool>()) return *v;
-  if (auto v = n.value<int64_t>()) {
-    if (*v == 0 || *v == 1) return *v == 1;
-  }
-  throw Error(where(cfg, n) + ": '" + key + "' must be true or false");
-}
+using config::boolean;
 
 long integer(const config::Config& cfg, const toml::node& n, const std::string& key, long lo) {
   auto v = n.value<int64_t>();
@@ -192,6 +186,7 @@ void load_fit_common(const config::Config& cfg, const toml::table& fit, const Fi
   if (auto n = get("seed")) spec.multistart.seed = static_cast<std::uint64_t>(integer(cfg, *n, "seed", 0));
   if (ov.seed >= 0) spec.multistart.seed = static_cast<std::uint64_t>(ov.seed);
   if (auto n = get("threads")) spec.multistart.threads = static_cast<int>(integer(cfg, *n, "threads", 0));
+  if (ov.threads > 0) spec.multistart.threads = ov.threads;
   if (auto n = get("absolute_sigma")) spec.absolute_sigma = boolean(cfg, *n, "absolute_sigma");
   if (auto n = get("profile")) {
     auto a = n->as_array();

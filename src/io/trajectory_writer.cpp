@@ -87,12 +87,16 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
 }
 
 void write_parameters(H5Writer& w, const model::OdeModel& m, const std::vector<double>& p) {
+  write_parameters(w, m.parameters(), p);
+}
+
+void write_parameters(H5Writer& w, const model::ParameterSet& ps, const std::vector<double>& p) {
   std::vector<std::string> units, sources;
-  for (auto& q : m.parameters().all()) {
+  for (auto& q : ps.all()) {
     units.push_back(q.unit);
     sources.push_back(q.source);
   }
-  w.write("/parameters/names", m.parameters().names());
+  w.write("/parameters/names", ps.names());
   w.write("/parameters/values", p, "see /parameters/units");
   w.write("/parameters/units", units);
   w.write("/parameters/sources", sources);

@@ -5,6 +5,13 @@
 #include "common/error.hpp"
 
 namespace phasmid::model {
+
+void LegOptions::hold_until(double start_ms) {
+  ld_release_ms = start_ms;
+  ld_release_source = "config start_ms (a choice: the seeds give no start phase of the single leg)";
+  ld_hold_g_pr = 5.0;
+  ld_hold_g_pr_source = "choice: PR silent until the start time, as in curve walking (Section 2.5.3: the PR is a reflex chain)";
+}
 namespace {
 const char* k32 = "Knops 2013, Section 3.2";
 const char* k322 = "Knops 2013, Section 3.2.2 / Fig. 3.11 (Toth et al. 2012); strength a documented choice (docs/walking_model.md)";

@@ -4,6 +4,15 @@
 
 namespace phasmid::model {
 
+std::unique_ptr<MechanicalJointModel> MechanicalJointModel::section311(const std::string& leg, JointType joint,
+                                                                      bool start_inc, const std::string& thc_set) {
+  const double period_ms = 500;
+  const double inc_ms = joint == JointType::Fti ? 250 : joint == JointType::Ctr ? 188 : 125;
+  const JointTable t = joint_table(leg, joint, thc_set);
+  return std::make_unique<MechanicalJointModel>(leg, joint, start_inc, start_inc ? inc_ms : period_ms - inc_ms,
+                                                period_ms, start_inc ? t.angle_min_deg : t.angle_max_deg, thc_set);
+}
+
 MechanicalJointModel::MechanicalJointModel(const std::string& leg, JointType joint, bool start_inc,
                                            double first_phase_ms, double period_ms, double angle0_deg,
                                            const std::string& thc_set)
