@@ -47,6 +47,15 @@ GsaResult ishigami_result(const std::string& method) {
   return r;
 }
 
+// Writes `r` to a fresh temporary file and returns its path.
+std::string written(const GsaResult& r, const std::string& name) {
+  const std::string path = temp(name.c_str());
+  io::H5Writer w(path);
+  write_gsa_h5(w, r);
+  w.commit();
+  return path;
+}
+
 void expect_same_values(const std::vector<double>& a, const std::vector<double>& b) {
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i)
@@ -54,29 +63,41 @@ void expect_same_values(const std::vector<double>& a, const std::vector<double>&
     else EXPECT_EQ(a[i], b[i]) << i;
 }
 
+// What both methods store alike: method, parameters, design, bootstrap settings, outputs.
+void expect_same_run(const GsaResult& r, const GsaResult& back) {
+  EXPECT_EQ(back.method, r.method);
+  EXPECT_EQ(back.bootstrap.seed, 12345678901234567ull);
+  EXPECT_EQ(back.bootstrap.resamples, r.bootstrap.resamples);
+  EXPECT_EQ(back.parameters[2].unit, "mV");
+  expect_same_values(back.unit_design(), r.unit_design());
+  ASSERT_EQ(back.features.size(), 1u);
+  EXPECT_EQ(back.features[0].unit, "ms");
+  expect_same_values(back.features[0].y, r.features[0].y);
+}
+
+// An Ishigami result of `method`, written, reopened and read back; checks what both methods
+// store alike.
+struct RoundTrip {
+  GsaResult r;
+  std::string path;
+  io::H5Reader h;
+  GsaResult back;
+  explicit RoundTrip(const std::string& method)
+      : r(ishigami_result(method)), path(written(r, "phasmid_gsa_" + method + ".h5")), h(path), back(read_gsa_h5(h)) {
+    expect_same_run(r, back);
+  }
+};
+
 }  // namespace
 
 TEST(GsaH5, SobolRoundTrip) {
-  const std::string path = temp("phasmid_gsa_sobol.h5");
-  const GsaResult r = ishigami_result("sobol");
-  {
-    io::H5Writer w(path);
-    write_gsa_h5(w, r);
-    w.commit();
-  }
-  io::H5Reader h(path);
-  const GsaResult back = read_gsa_h5(h);
-  EXPECT_EQ(back.method, "sobol");
+  const RoundTrip rt("sobol");
+  const GsaResult &r = rt.r, &back = rt.back;
+  const io::H5Reader& h = rt.h;
   EXPECT_EQ(back.saltelli_options.n_base, 64u);
   EXPECT_EQ(back.saltelli_options.seed, 42u);
-  EXPECT_EQ(back.bootstrap.seed, 12345678901234567ull);
   EXPECT_TRUE(back.saltelli.second_order);
-  EXPECT_EQ(back.parameters[2].unit, "mV");
-  expect_same_values(back.saltelli.unit, r.saltelli.unit);
-  ASSERT_EQ(back.features.size(), 1u);
   const FeatureResult& f = back.features[0];
-  EXPECT_EQ(f.unit, "ms");
-  expect_same_values(f.y, r.features[0].y);
   expect_same_values(f.sobol.S1, r.features[0].sobol.S1);
   expect_same_values(f.sobol.ST_conf, r.features[0].sobol.ST_conf);
   expect_same_values(f.sobol.S2, r.features[0].sobol.S2);
@@ -91,16 +112,9 @@ TEST(GsaH5, SobolRoundTrip) {
 }
 
 TEST(GsaH5, MorrisRoundTrip) {
-  const std::string path = temp("phasmid_gsa_morris.h5");
-  const GsaResult r = ishigami_result("morris");
-  {
-    io::H5Writer w(path);
-    write_gsa_h5(w, r);
-    w.commit();
-  }
-  io::H5Reader h(path);
-  const GsaResult back = read_gsa_h5(h);
-  EXPECT_EQ(back.method, "morris");
+  const RoundTrip rt("morris");
+  const GsaResult &r = rt.r, &back = rt.back;
+  const io::H5Reader& h = rt.h;
   EXPECT_EQ(back.morris.levels, 4);
   EXPECT_EQ(back.morris_options.pool, 12u);
   EXPECT_DOUBLE_EQ(back.morris.delta, 2.0 / 3.0);

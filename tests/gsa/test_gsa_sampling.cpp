@@ -85,3 +85,14 @@ TEST(GsaSampling, RejectsTooManyParametersForTheSequence) {
   SaltelliOptions o;
   EXPECT_THROW(saltelli_sample(17, o), phasmid::Error);  // needs a 34-dimensional sequence
 }
+
+// The first n blocks of a design are the design of base size n (convergence from nested
+// subsets of one run).
+TEST(GsaSampling, SaltelliDesignsAreNested) {
+  SaltelliOptions big, small;
+  big.n_base = 128, small.n_base = 32;
+  big.seed = small.seed = 17;
+  big.skip = small.skip = 4;
+  const SaltelliDesign b = saltelli_sample(3, big), s = saltelli_sample(3, small);
+  EXPECT_EQ(std::vector<double>(b.unit.begin(), b.unit.begin() + s.unit.size()), s.unit);
+}
