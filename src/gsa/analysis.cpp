@@ -39,7 +39,7 @@ void check_bootstrap(const BootstrapOptions& b) {
     throw Error("gsa: confidence level must lie in (0, 1), got " + std::to_string(b.confidence));
 }
 
-// Resample `n` items with replacement.
+// As many items as `items` holds, drawn from it with replacement.
 std::vector<std::size_t> resample(const std::vector<std::size_t>& items, sweep::SplitMix64& rng) {
   std::vector<std::size_t> out(items.size());
   for (auto& o : out) o = items[rng.below(items.size())];
