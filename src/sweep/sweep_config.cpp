@@ -44,11 +44,6 @@ void check_admissible(const config::Config& cfg, const toml::node& n, const mode
   }
 }
 
-double map_unit(const SweptParameter& p, double u) {
-  double x = p.log_scale ? std::exp(std::log(p.lower) + u * (std::log(p.upper) - std::log(p.lower)))
-                         : p.lower + u * (p.upper - p.lower);
-  return std::min(std::max(x, p.lower), p.upper);  // rounding never leaves [lower, upper]
-}
 void parse_options(const config::Config& cfg, const toml::table& st, SweepSpec& spec) {
   const toml::node* on = st.get("option");
   if (!on) return;
@@ -88,6 +83,12 @@ void parse_options(const config::Config& cfg, const toml::table& st, SweepSpec& 
   }
 }
 }  // namespace
+
+double map_unit(const SweptParameter& p, double u) {
+  double x = p.log_scale ? std::exp(std::log(p.lower) + u * (std::log(p.upper) - std::log(p.lower)))
+                         : p.lower + u * (p.upper - p.lower);
+  return std::min(std::max(x, p.lower), p.upper);  // rounding never leaves [lower, upper]
+}
 
 namespace {
 

@@ -56,6 +56,10 @@ struct SweepSpec {
   std::string describe_combo(std::size_t combo) const;  // e.g. "gait = tripod"
 };
 
+// Unit interval -> parameter value: linear in [lower, upper], or in log with log_scale;
+// clamped so that rounding never leaves [lower, upper]. Shared with gsa/sampling.
+double map_unit(const SweptParameter& p, double u);
+
 // Parses and validates [sweep] against the model's parameters (names, admissible ranges);
 // every error names file:line. t_end_ms / discard_ms default to [simulation]'s.
 SweepSpec parse_sweep(const config::Config& cfg, const model::ParameterSet& params,
