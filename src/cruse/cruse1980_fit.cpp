@@ -247,8 +247,7 @@ CruseFit load_cruse_fit(const std::string& config_path, const std::vector<std::s
               "start_positions", "cycles"});
   fit::FitSpec& spec = out.spec;
   // Default optimiser: derivative-free (the config or --optimizer may choose another NLopt method).
-  spec.optimizer.backend = fit::Backend::NLopt;
-  spec.optimizer.nlopt_algorithm = "BOBYQA";
+  spec.optimizer.method = "nlopt:BOBYQA";
   const Parameters& base = out.config.parameters;
   fit::load_fit_common(cfg, fit, ov, {"feature"},
                        [&](const std::string& id) {
