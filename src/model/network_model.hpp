@@ -156,10 +156,10 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   // muscle -> joint; the sensory and intersegmental modulations (sigmoids of joint angles)
   // are the couplings between parts.
   ModelPartition partition() const override;
-  // With rate motoneurons: 2.8x faster for 9 s of three legs at equal feature accuracy. Not with
-  // spiking ones: at the same rtol the joints' own step sizes lose accuracy in spike-driven
-  // features (front-leg durations off by 4.5 ms vs 0.3 ms at 1e-6), and at the tighter rtol that
-  // restores it no time is gained (docs/benchmarks.md "Partitioned integration").
+  // Rate motoneurons only: the joints' own step sizes keep feature accuracy and save time. With
+  // spiking ones they lose accuracy in spike-driven features at the same rtol, and the tighter
+  // rtol that restores it costs the time saved (figures: docs/benchmarks.md "Partitioned
+  // integration").
   bool partition_by_default() const override { return rate_mn_; }
   std::unique_ptr<OdeModelPart> make_part(const ModelPartition& partition, size_t k) const override;
 
