@@ -15,15 +15,10 @@ using namespace phasmid;
 
 namespace {
 std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    std::string m = e.what();
-    EXPECT_EQ(m.find('\n'), std::string::npos) << "error spans several lines: " << m;
-    return m;
-  }
-  ADD_FAILURE() << "no error thrown";
-  return "";
+  const std::string m = fittest::error_message(f);
+  if (m.empty()) ADD_FAILURE() << "no error thrown";
+  EXPECT_EQ(m.find('\n'), std::string::npos) << "error spans several lines: " << m;
+  return m;
 }
 #define EXPECT_ERROR(expr, substr) EXPECT_NE(error_of([&] { expr; }).find(substr), std::string::npos) << error_of([&] { expr; })
 }  // namespace
