@@ -52,7 +52,7 @@ const RegisterVerb reg{{"fit", "Fit parameters to feature targets, switch condit
                           sub.add_option("--data", a->ov.data, "kinematic recording (CSV: time_ms, <leg>.<joint> in deg)");
                           sub.add_option("--data-format", a->ov.data_format, "csv (default) or anipose");
                           sub.add_option("--parameters", a->ov.parameters, "PEtab parameter table (TSV)");
-                          sub.add_option("--optimizer", a->ov.optimizer, "ceres (default) or nlopt:NAME (BOBYQA, COBYLA, NELDERMEAD, SBPLX, LBFGS, SLSQP, MMA, DIRECT_L, CRS2_LM, ISRES, MLSL)");
+                          sub.add_option("--optimizer", a->ov.optimizer, fit::optimizer_help());
                           sub.add_option("--multistart", a->ov.multistart, "number of starts (nominal + Latin hypercube / Sobol)");
                           sub.add_option("--seed", a->ov.seed, "seed of the start sampling");
                           sub.add_option("--target-set", a->ov.target_set, "which set of [[fit.feature]]/[[fit.switch]] targets");

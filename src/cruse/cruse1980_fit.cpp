@@ -236,8 +236,7 @@ CruseFit load_cruse_fit(const Parameters& base, const config::Config& cfg, const
               "start_positions", "cycles"});
   fit::FitSpec& spec = out.spec;
   // Default optimiser: derivative-free (the config or --optimizer may choose another NLopt method).
-  spec.optimizer.backend = fit::Backend::NLopt;
-  spec.optimizer.nlopt_algorithm = "BOBYQA";
+  spec.optimizer.method = "nlopt:BOBYQA";
   fit::load_fit_common(cfg, fit, ov, {"feature"},
                        [&](const std::string& id) {
                          for (const auto& np : base.all())

@@ -168,8 +168,9 @@ void load_fit_common(const config::Config& cfg, const toml::table& fit, const Fi
     static const std::set<std::string> losses = {"none", "huber", "cauchy", "soft_l1", "arctan"};
     if (!losses.count(spec.optimizer.loss))
       throw Error(where(cfg, *get("loss")) + ": loss must be none, huber, cauchy, soft_l1 or arctan");
-    if (spec.optimizer.loss != "none" && spec.optimizer.backend != Backend::Ceres)
-      throw Error(where(cfg, *get("loss")) + ": robust losses need the ceres optimizer");
+    if (spec.optimizer.loss != "none" && !optimizer_info(spec.optimizer).robust_loss)
+      throw Error(where(cfg, *get("loss")) + ": robust losses need one of " +
+                  optimizer_list([](const OptimizerInfo& a) { return a.robust_loss; }) + ", not " + spec.optimizer.method);
   }
   if (auto n = get("multistart")) spec.multistart.starts = static_cast<size_t>(integer(cfg, *n, "multistart", 1));
   if (ov.multistart >= 0) {

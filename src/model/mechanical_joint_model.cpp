@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "common/units.hpp"
+
 namespace phasmid::model {
 
 std::unique_ptr<MechanicalJointModel> MechanicalJointModel::section311(const std::string& leg, JointType joint,
@@ -31,7 +33,7 @@ MechanicalJointModel::MechanicalJointModel(const std::string& leg, JointType joi
 }
 
 std::vector<double> MechanicalJointModel::initial_state(const std::vector<double>& p) const {
-  return {p[angle0_] * M_PI / 180.0, 0.0};
+  return {units::deg_to_rad(p[angle0_]), 0.0};
 }
 
 std::vector<double> MechanicalJointModel::breakpoints(const std::vector<double>& p, double t_end) const {

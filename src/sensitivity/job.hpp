@@ -1,7 +1,7 @@
 #pragma once
 // Everything `phasmid sensitivity CONFIG [-o OUT.h5] [--method forward|fd]` does once the
 // model is assembled: the options of the config's [sensitivity] section, the analysis, the
-// optional limit-cycle analysis, and the HDF5 file (DESIGN.md §3, docs/sensitivity.md).
+// optional limit-cycle analysis, and the HDF5 file (docs/hdf5.md, docs/sensitivity.md).
 #include <string>
 #include <vector>
 
