@@ -6,18 +6,12 @@ states) in Brian2, written from docs/model.md ("Networks"), on the C++ standalon
 Usage as bench/brian2/single_joint_fti.py (same options and JSON output); the features are
 per joint (`thc.*`, `ctr.*`, `fti.*`: period, mean extremal angles over [discard, t_end]).
 """
-import argparse
 import json
 import math
 import os
-import resource
 import sys
-import tempfile
-import time
-import warnings
 
-import numpy as np
-
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import single_joint_fti as sj  # noqa: E402  (shared classes, MN equations, features, Brian2 helpers)
 
@@ -140,65 +134,16 @@ def initial_state(nap, mns):
     return init
 
 
-def run_brian2(a):
-    warnings.simplefilter("ignore")
-    import brian2 as b2
-
-    b2.prefs.logging.file_log = False
-    b2.prefs.logging.std_redirection = False
-    directory = a.dir or tempfile.mkdtemp(prefix="brian2_leg_")
-    b2.set_device("cpp_standalone", directory=directory, build_on_run=False)
-    sj.patch_gsl_standalone()
-    b2.prefs.devices.cpp_standalone.extra_make_args_unix = ["-j1"]
-    b2.defaultclock.dt = a.dt * b2.ms
-    eqs, nap, mns = build_equations()
-    method, options = ("rk4", {}) if a.method == "rk4" else ("gsl_rkf45", {"absolute_error": a.error, "max_steps": sj.GSL_MAX_STEPS})
-    G = b2.NeuronGroup(1, eqs, method=method, method_options=options, name="leg")
-    for k, v in initial_state(nap, mns).items():
-        setattr(G, k, v)
-    names = [f"{x}_{j}" for j in JOINTS for x in ("ang", "omg")]
-    mon = b2.StateMonitor(G, names, record=0, dt=max(a.sample_dt, a.dt) * b2.ms, name="angles")
-    b2.run(a.t_end * b2.ms)
-    t0 = time.perf_counter()
-    with sj.stdout_to_stderr():
-        b2.device.build(directory=directory, compile=True, run=False, with_output=False)
-    compile_s = time.perf_counter() - t0
-    runs, procs = [], []
-    for _ in range(a.repeats):
-        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        b2.device.run(directory, False, [])
-        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        runs.append(b2.device._last_run_time)
-        procs.append(r1.ru_utime + r1.ru_stime - r0.ru_utime - r0.ru_stime)
-    t = np.asarray(mon.t / b2.ms)
-    traces = {j: (np.asarray(getattr(mon, "ang_" + j)[0]), np.asarray(getattr(mon, "omg_" + j)[0])) for j in JOINTS}
-    return directory, compile_s, runs, procs, t, traces
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--method", choices=["rk4", "rkf45"], default="rk4")
-    ap.add_argument("--dt", type=float, default=0.01)
-    ap.add_argument("--error", type=float, default=1e-3)
-    ap.add_argument("--sample-dt", type=float, default=0.1)
-    ap.add_argument("--t-end", type=float, default=9000.0)
-    ap.add_argument("--discard", type=float, default=2000.0)
-    ap.add_argument("--repeats", type=int, default=1)
-    ap.add_argument("--dir", default="")
-    a = ap.parse_args()
-    directory, compile_s, runs, procs, t, traces = run_brian2(a)
-    res = {"method": a.method, "dt_ms": a.dt, "compile_s": compile_s, "run_cpu_s": runs, "run_cpu_s_min": min(runs),
-           "process_cpu_s": procs, "directory": directory}
-    if a.method == "rkf45":
-        res["absolute_error"] = a.error
-    for j, (ang, omg) in traces.items():
-        if not np.all(np.isfinite(ang)):
-            print(json.dumps({"error": "non-finite angle (integration unstable)", "method": a.method, "dt_ms": a.dt}))
-            return 1
-        for k, v in sj.features(t, ang, omg, a.discard).items():
-            res[f"{j}.{k}"] = v
+    a = sj.parse_args(__doc__)
+    eqs, nap, mns = build_equations()
+    if a.print_equations:
+        print(eqs)
+        return 0
+    channels = {j: (f"ang_{j}", f"omg_{j}") for j in JOINTS}
+    res = sj.simulate(a, eqs, initial_state(nap, mns), channels, "leg")
     print(json.dumps(res))
-    return 0
+    return 0 if "error" not in res else 1
 
 
 if __name__ == "__main__":

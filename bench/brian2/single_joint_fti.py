@@ -309,46 +309,8 @@ def patch_gsl_standalone():
         setattr(G, name, CPPStandaloneCodeObject.__dict__[name])
 
 
-def run_brian2(a):
-    warnings.simplefilter("ignore")  # Debian's pythran/numpy deprecation noise on import
-    import brian2 as b2
-
-    b2.prefs.logging.file_log = False
-    b2.prefs.logging.std_redirection = False
-    directory = a.dir or tempfile.mkdtemp(prefix="brian2_fti_")
-    b2.set_device("cpp_standalone", directory=directory, build_on_run=False)
-    patch_gsl_standalone()
-    b2.prefs.devices.cpp_standalone.extra_make_args_unix = ["-j1"]
-    b2.defaultclock.dt = a.dt * b2.ms
-    eqs = build_equations(P)
-    if a.method == "rk4":
-        method, options = "rk4", {}
-    else:
-        method, options = "gsl_rkf45", {"absolute_error": a.error, "max_steps": GSL_MAX_STEPS}
-    G = b2.NeuronGroup(1, eqs, method=method, method_options=options, name="fti")
-    for k, v in initial_state(P).items():
-        setattr(G, k, v)
-    sample_dt = max(a.sample_dt, a.dt)
-    mon = b2.StateMonitor(G, ["ang", "omg"], record=0, dt=sample_dt * b2.ms, name="angle")
-    b2.run(a.t_end * b2.ms)
-    t0 = time.perf_counter()
-    with stdout_to_stderr():  # the compiler's output is not part of the JSON answer
-        b2.device.build(directory=directory, compile=True, run=False, with_output=False)
-    compile_s = time.perf_counter() - t0
-    runs, procs = [], []
-    for _ in range(a.repeats):
-        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        b2.device.run(directory, False, [])
-        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        runs.append(b2.device._last_run_time)  # std::clock() around the network run
-        procs.append(r1.ru_utime + r1.ru_stime - r0.ru_utime - r0.ru_stime)
-    t = np.asarray(mon.t / b2.ms)
-    ang, omg = np.asarray(mon.ang[0]), np.asarray(mon.omg[0])
-    return directory, compile_s, runs, procs, t, ang, omg
-
-
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+def parse_args(doc, argv=None):
+    ap = argparse.ArgumentParser(description=doc.split("\n\n")[0])
     ap.add_argument("--method", choices=["rk4", "rkf45"], default="rk4")
     ap.add_argument("--dt", type=float, default=0.01, help="clock dt, ms (RK4 step; GSL: output interval)")
     ap.add_argument("--error", type=float, default=1e-3, help="GSL absolute error bound (all variables)")
@@ -358,22 +320,64 @@ def main():
     ap.add_argument("--repeats", type=int, default=1)
     ap.add_argument("--dir", default="", help="standalone project directory (default: a new temporary one)")
     ap.add_argument("--print-equations", action="store_true")
-    a = ap.parse_args()
+    return ap.parse_args(argv)
+
+
+def simulate(a, eqs, init, channels, name):
+    """Builds the one-group model on the standalone device, compiles it, runs it a.repeats times
+    and returns the JSON answer: times, and per channel j -> (angle var, velocity var) the
+    features `j.<feature>` (or "error" if the integration blew up)."""
+    warnings.simplefilter("ignore")  # Debian's pythran/numpy deprecation noise on import
+    import brian2 as b2
+
+    b2.prefs.logging.file_log = False
+    b2.prefs.logging.std_redirection = False
+    directory = a.dir or tempfile.mkdtemp(prefix=f"brian2_{name}_")
+    b2.set_device("cpp_standalone", directory=directory, build_on_run=False)
+    patch_gsl_standalone()
+    b2.prefs.devices.cpp_standalone.extra_make_args_unix = ["-j1"]
+    b2.defaultclock.dt = a.dt * b2.ms
+    if a.method == "rk4":
+        method, options = "rk4", {}
+    else:
+        method, options = "gsl_rkf45", {"absolute_error": a.error, "max_steps": GSL_MAX_STEPS}
+    G = b2.NeuronGroup(1, eqs, method=method, method_options=options, name=name)
+    for k, v in init.items():
+        setattr(G, k, v)
+    recorded = [v for pair in channels.values() for v in pair]
+    mon = b2.StateMonitor(G, recorded, record=0, dt=max(a.sample_dt, a.dt) * b2.ms, name="angles")
+    b2.run(a.t_end * b2.ms)
+    t0 = time.perf_counter()
+    with stdout_to_stderr():  # the compiler's output is not part of the JSON answer
+        b2.device.build(directory=directory, compile=True, run=False, with_output=False)
+    res = {"method": a.method, "dt_ms": a.dt, "compile_s": time.perf_counter() - t0, "run_cpu_s": [],
+           "process_cpu_s": [], "directory": directory}
+    if a.method == "rkf45":
+        res["absolute_error"] = a.error
+    for _ in range(a.repeats):
+        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        b2.device.run(directory, False, [])
+        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        res["run_cpu_s"].append(b2.device._last_run_time)  # std::clock() around the network run
+        res["process_cpu_s"].append(r1.ru_utime + r1.ru_stime - r0.ru_utime - r0.ru_stime)
+    res["run_cpu_s_min"] = min(res["run_cpu_s"])
+    t = np.asarray(mon.t / b2.ms)
+    for j, (va, vw) in channels.items():
+        ang, omg = np.asarray(getattr(mon, va)[0]), np.asarray(getattr(mon, vw)[0])
+        if not np.all(np.isfinite(ang)):
+            return {"error": "non-finite angle (integration unstable)", "method": a.method, "dt_ms": a.dt}
+        res.update({f"{j}.{k}": v for k, v in features(t, ang, omg, a.discard).items()})
+    return res
+
+
+def main():
+    a = parse_args(__doc__)
     if a.print_equations:
         print(build_equations(P))
         return 0
-    directory, compile_s, runs, procs, t, ang, omg = run_brian2(a)
-    if not np.all(np.isfinite(ang)):
-        print(json.dumps({"error": "non-finite angle (integration unstable)", "method": a.method, "dt_ms": a.dt}))
-        return 1
-    res = {"method": a.method, "dt_ms": a.dt, "compile_s": compile_s, "run_cpu_s": runs, "run_cpu_s_min": min(runs),
-           "process_cpu_s": procs,
-           "directory": directory}
-    if a.method == "rkf45":
-        res["absolute_error"] = a.error
-    res.update({"fti." + k: v for k, v in features(t, ang, omg, a.discard).items()})
+    res = simulate(a, build_equations(P), initial_state(P), {"fti": ("ang", "omg")}, "fti")
     print(json.dumps(res))
-    return 0
+    return 0 if "error" not in res else 1
 
 
 if __name__ == "__main__":
