@@ -5,6 +5,8 @@
 // which has no Jacobian, and accepted for the FTi fit, which has one.
 #include <gtest/gtest.h>
 
+#include "config/config.hpp"
+
 #include <nlopt.h>
 
 #include <algorithm>
@@ -113,7 +115,13 @@ TEST(OptimizerTable, HelpAndUnknownOptimizerErrorListEveryRow) {
 }
 
 TEST(OptimizerTable, GradientRowsAreRefusedForTheCruseFitWhichHasNoJacobian) {
-  const auto cf = cruse::load_cruse_fit(fittest::source("configs/fit_cruse1980_switch.toml"), {}, {});
+  // The fit of the Cruse config as `phasmid fit` makes it: through the cruse1980 scenario.
+  const config::Config cfg = config::load_config(fittest::source("configs/fit_cruse1980_switch.toml"));
+  struct {
+    fit::FitSpec spec;
+    std::unique_ptr<fit::ResidualProblem> problem;
+  } cf;
+  cf.problem = config::build_scenario(cfg)->make_fit(cfg, {}, cf.spec);
   ASSERT_FALSE(cf.problem->has_jacobian());
   const std::string reason = cf.problem->no_jacobian_reason();
   ASSERT_FALSE(reason.empty());
