@@ -7,7 +7,7 @@
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
 #include "model/leg_tables.hpp"
-#include "sensitivity/event_time.hpp"
+#include "features/event_time.hpp"
 
 namespace phasmid::features {
 namespace {
@@ -48,8 +48,8 @@ std::vector<Extremum> channel_extrema(const model::AngleChannel& ch, size_t root
     x.t.g = Eigen::VectorXd::Zero(ns);
     x.angle.g = Eigen::VectorXd::Zero(ns);
     if (with_grad && e.t >= opt.discard_ms) {
-      x.t.g = sensitivity::event_time_sensitivity(e, root, ns);
-      x.angle.g = sensitivity::state_at_event_sensitivity(e, ch.angle_state, x.t.g) * kDeg;
+      x.t.g = event_time_sensitivity(e, root, ns);
+      x.angle.g = state_at_event_sensitivity(e, ch.angle_state, x.t.g) * kDeg;
     }
     ex.push_back(std::move(x));
   }
@@ -176,13 +176,13 @@ struct EventDual {
 EventDual event_dual(const solver::Event& e, const solver::RootSpec& root, size_t ns, bool with_grad,
                      const Eigen::VectorXd& dlevel) {
   EventDual x{&e, {e.t, Eigen::VectorXd::Zero(ns)}};
-  if (with_grad && ns) x.t.g = sensitivity::event_time_sensitivity(e, root, ns) + dlevel / e.ydot.at(root.state);
+  if (with_grad && ns) x.t.g = event_time_sensitivity(e, root, ns) + dlevel / e.ydot.at(root.state);
   return x;
 }
 // The angle (deg) of state i at an event, with its total derivative.
 Dual angle_at(const EventDual& x, size_t i, size_t ns, bool with_grad) {
   Dual a{x.e->y.at(i) * kDeg, Eigen::VectorXd::Zero(ns)};
-  if (with_grad && ns) a.g = sensitivity::state_at_event_sensitivity(*x.e, i, x.t.g) * kDeg;
+  if (with_grad && ns) a.g = state_at_event_sensitivity(*x.e, i, x.t.g) * kDeg;
   return a;
 }
 // d level / d p_j for the sensitivity parameters: `factor` for the model parameter `name`.

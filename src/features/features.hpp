@@ -2,7 +2,7 @@
 // Gait features from located events (DESIGN.md §1): extrema of every joint angle are found
 // by CVODES root finding on the angular velocity, so feature values are exact up to the
 // solver tolerance and differentiable with respect to the parameters (see
-// src/sensitivity/event_time.hpp and docs/features.md).
+// src/features/event_time.hpp and docs/features.md).
 #include <string>
 #include <vector>
 
