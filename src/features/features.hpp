@@ -1,8 +1,8 @@
 #pragma once
-// Gait features from located events (DESIGN.md §1): extrema of every joint angle are found
+// Gait features from located events (docs/features.md): extrema of every joint angle are found
 // by CVODES root finding on the angular velocity, so feature values are exact up to the
 // solver tolerance and differentiable with respect to the parameters (see
-// src/features/event_time.hpp and docs/features.md).
+// src/features/event_time.hpp).
 #include <string>
 #include <vector>
 
@@ -89,7 +89,7 @@ std::vector<FeatureGradient> compute_feature_gradients(const model::OdeModel& mo
 // fewer), derived from its angle channels and declared contact legs, in compute order.
 std::vector<FeatureInfo> feature_catalogue(const model::OdeModel& model);
 
-// `/features/<name>` scalar datasets with a `units` attribute (DESIGN.md §3).
+// `/features/<name>` scalar datasets with a `units` attribute (docs/hdf5.md).
 void write_features_h5(io::H5Writer& out, const std::vector<Feature>& features);
 // Reads every scalar under `/features`; throws Error (one line) if the file has no such group.
 std::vector<Feature> read_features_h5(const io::H5Reader& in);

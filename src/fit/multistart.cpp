@@ -36,7 +36,7 @@ MultistartResult multistart(const ResidualProblem& problem, const OptimizerOptio
     try {
       s = optimize(problem, starts[i], o);
     } catch (const std::exception& e) {
-      s.optimizer = optimizer_name(o);
+      s.optimizer = o.method;
       s.x_start = s.x = starts[i];
       s.termination = "FAILURE";
       s.message = e.what();
@@ -48,7 +48,7 @@ MultistartResult multistart(const ResidualProblem& problem, const OptimizerOptio
       ++done;
       if (out.runs[i].usable && out.runs[i].final_cost < best) best = out.runs[i].final_cost;
       if (tty) std::fprintf(stderr, "\r%s [%s] multistart %zu/%zu done, best cost %.6g   ", options.progress_label.c_str(),
-                            optimizer_name(o).c_str(), done, n, best);
+                            o.method.c_str(), done, n, best);
     }
   }
   if (tty) std::fprintf(stderr, "\n");

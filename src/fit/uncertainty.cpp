@@ -98,7 +98,7 @@ Profile profile_likelihood(const ResidualProblem& problem, const std::vector<dou
   pr.cost.assign(points, kNaN);
   pr.delta_chi2.assign(points, kNaN);
   pr.converged.assign(points, 0);
-  o.backend = Backend::Ceres;  // profiles re-optimise with exact Jacobians
+  o.method = "ceres";  // profiles re-optimise with exact Jacobians and held parameters
   o.fixed = {j};
   o.progress = false;
   const double s2 = std::isfinite(sigma2) && sigma2 > 0 ? sigma2 : 1.0;

@@ -1,5 +1,6 @@
 #include "io/trajectory_writer.hpp"
 
+#include "common/units.hpp"
 #include "model/body_kinematics.hpp"
 
 #include <algorithm>
@@ -13,16 +14,16 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
   const size_t n_out = r.t.size();
   std::vector<double> col(n_out);
   for (const auto& a : m.angles()) {
-    for (size_t k = 0; k < n_out; ++k) col[k] = r.state(k, a.angle_state) * 180.0 / M_PI;
+    for (size_t k = 0; k < n_out; ++k) col[k] = units::rad_to_deg(r.state(k, a.angle_state));
     w.write("/trajectory/angles/" + a.leg + "/" + a.joint, col, "deg");
-    for (size_t k = 0; k < n_out; ++k) col[k] = r.state(k, a.velocity_state) * 180.0 / M_PI;
+    for (size_t k = 0; k < n_out; ++k) col[k] = units::rad_to_deg(r.state(k, a.velocity_state));
     w.write("/trajectory/angular_velocity/" + a.leg + "/" + a.joint, col, "deg/s");
   }
   // Footfall pattern of walking models: 1 swing, 0 stance (ground contact: beta below the
   // leg's threshold, docs/walking_model.md).
   auto threshold_deg = [&](const model::ContactLeg& l) { return m.parameters().at(l.threshold_param).value; };
   for (const model::ContactLeg& l : m.structure().contact_legs) {
-    const double thr_rad = threshold_deg(l) * M_PI / 180.0;
+    const double thr_rad = units::deg_to_rad(threshold_deg(l));
     for (size_t k = 0; k < n_out; ++k) col[k] = r.state(k, l.beta_state) < thr_rad ? 0.0 : 1.0;
     w.write("/trajectory/footfall/" + l.leg, col, "1");
   }
@@ -47,7 +48,7 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
       auto it = side.find(a.leg);
       if (it == side.end()) continue;
       std::vector<double> x(n_out);
-      for (size_t k = 0; k < n_out; ++k) x[k] = r.state(k, a.angle_state) * 180.0 / M_PI;
+      for (size_t k = 0; k < n_out; ++k) x[k] = units::rad_to_deg(r.state(k, a.angle_state));
       w.write("/trajectory/angles/L" + it->second + "/" + a.joint, x, "deg");
       w.write("/trajectory/angles/R" + it->second + "/" + a.joint, delayed(x), "deg");
       const model::ContactLeg* contact = m.contact_leg(a.leg);
@@ -68,7 +69,7 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
     for (const auto& ch : m.angles()) {
       if (ch.leg != body.left_leg && ch.leg != body.right_leg) continue;
       std::vector<double> x(n_out);
-      for (size_t k = 0; k < n_out; ++k) x[k] = r.state(k, ch.angle_state) * 180.0 / M_PI;
+      for (size_t k = 0; k < n_out; ++k) x[k] = units::rad_to_deg(r.state(k, ch.angle_state));
       a[ch.leg + "." + ch.joint] = x;
     }
     const std::string L = body.left_leg + ".", R = body.right_leg + ".";
@@ -89,12 +90,16 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
 }
 
 void write_parameters(H5Writer& w, const model::OdeModel& m, const std::vector<double>& p) {
+  write_parameters(w, m.parameters(), p);
+}
+
+void write_parameters(H5Writer& w, const model::ParameterSet& ps, const std::vector<double>& p) {
   std::vector<std::string> units, sources;
-  for (auto& q : m.parameters().all()) {
+  for (auto& q : ps.all()) {
     units.push_back(q.unit);
     sources.push_back(q.source);
   }
-  w.write("/parameters/names", m.parameters().names());
+  w.write("/parameters/names", ps.names());
   w.write("/parameters/values", p, "see /parameters/units");
   w.write("/parameters/units", units);
   w.write("/parameters/sources", sources);

@@ -61,20 +61,17 @@ std::string gait_class_of(const std::vector<features::Feature>& features) {
   return "ok";
 }
 
-PointResult evaluate_point(const model::OdeModel& model, const std::vector<double>& base_parameters,
+PointResult evaluate_point(const scenario::Scenario& scenario, const std::vector<double>& base_parameters,
                            const std::vector<std::size_t>& swept_indices, const SweepSpec& spec,
-                           std::size_t point, const solver::SolverOptions& solver_options) {
+                           std::size_t point, const scenario::RunSettings& settings) {
   PointResult r;
   try {
     std::vector<double> p = base_parameters;
     for (std::size_t d = 0; d < swept_indices.size(); ++d) p[swept_indices[d]] = spec.at(point, d);
-    solver::Simulator sim(model, solver_options);
-    // Features come from located events, so two output times suffice; CVODES steps the same
-    // way whatever the output grid (it interpolates to output times in CV_NORMAL mode).
-    solver::SolveResult res = sim.run(p, {0.0, spec.t_end_ms}, features::feature_roots(model, p));
-    features::FeatureOptions fo;
-    fo.discard_ms = spec.discard_ms;
-    r.features = features::compute_features(model, res, fo);
+    scenario::RunSettings s = settings;
+    s.t_end_ms = spec.t_end_ms;
+    s.discard_ms = spec.discard_ms;
+    r.features = scenario.evaluate_features(p, s);
     r.gait_class = gait_class_of(r.features);
   } catch (const std::exception& e) {  // SolverError, any phasmid::Error, or worse: recorded, not fatal
     r = PointResult{};
@@ -85,32 +82,23 @@ PointResult evaluate_point(const model::OdeModel& model, const std::vector<doubl
   return r;
 }
 
-SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& opt) {
+SweepOutcome run_sweep(const SweepInputs& in, const SweepOptions& opt) {
   const auto wall0 = std::chrono::steady_clock::now();
-  std::unique_ptr<model::OdeModel> base_model = config::build_model(cfg, opt.sets);
-  const config::SimulationSettings sim = config::simulation_settings(cfg);
-  const SweepSpec spec = parse_sweep(cfg, base_model->parameters(), sim);
-  const std::string resolved = config::resolved_config_text(cfg, opt.sets);
-  const std::vector<double> base_p = base_model->parameters().values();
-
-  // Per option combination: its config, base parameter vector and swept parameter indices.
-  std::vector<config::Config> combo_cfg;
+  const SweepSpec& spec = in.spec;
+  const std::string& resolved = in.resolved_config;
+  // Per option combination: its base parameter vector and swept parameter indices.
   std::vector<std::vector<double>> combo_p;
   std::vector<std::vector<std::size_t>> combo_swept;
+  std::unique_ptr<scenario::Scenario> base_scenario;
   for (std::size_t c = 0; c < spec.n_combos; ++c) {
-    combo_cfg.push_back(spec.config_for(cfg, c));
-    try {
-      auto m = config::build_model(combo_cfg.back(), opt.sets);
-      combo_p.push_back(m->parameters().values());
-      std::vector<std::size_t> idx;
-      for (auto& p : spec.parameters) idx.push_back(m->parameters().index(p.name));
-      combo_swept.push_back(std::move(idx));
-    } catch (const Error& e) {
-      std::string at;
-      for (std::size_t k = 0; k < spec.options.size(); ++k) at = spec.options[k].where[spec.option_value(c, k)];
-      throw Error(at + ": sweep option " + spec.describe_combo(c) + ": " + e.what());
-    }
+    auto s = in.make(c);
+    combo_p.push_back(s->parameters().values());
+    std::vector<std::size_t> idx;
+    for (auto& p : spec.parameters) idx.push_back(s->parameters().index(p.name));
+    combo_swept.push_back(std::move(idx));
+    if (c == 0) base_scenario = std::move(s);
   }
+  const std::vector<double>& base_p = combo_p.front();
 
   SweepOutcome out;
   out.n_points = spec.n_points;
@@ -132,11 +120,11 @@ SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& opt) {
   out.threads = nthreads;
   // One model per thread and option combination, built serially: threads share nothing but
   // read-only inputs.
-  std::vector<std::vector<std::unique_ptr<model::OdeModel>>> models(nthreads);
+  std::vector<std::vector<std::unique_ptr<scenario::Scenario>>> models(nthreads);
   for (auto& per_thread : models)
-    for (std::size_t c = 0; c < spec.n_combos; ++c) per_thread.push_back(config::build_model(combo_cfg[c], opt.sets));
-  solver::SolverOptions so = sim.solver;
-  so.progress = false;
+    for (std::size_t c = 0; c < spec.n_combos; ++c) per_thread.push_back(in.make(c));
+  scenario::RunSettings so = in.settings;
+  so.solver.progress = false;
 
   SignalGuard signals(opt.handle_signals);
   ProgressBar bar(spec.n_points, out.n_recovered, opt.progress);
@@ -188,7 +176,7 @@ SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& opt) {
   std::vector<PointResult> all;
   all.reserve(spec.n_points);
   for (auto& r : results) all.push_back(std::move(*r));
-  write_sweep_h5(opt.output, spec, all, *base_model, base_p, {resolved, opt.command});
+  write_sweep_h5(opt.output, spec, all, base_scenario->parameters(), base_p, {resolved, opt.command});
   journal.close_and_remove();
   out.complete = true;
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
