@@ -31,20 +31,15 @@ std::vector<std::string> names_of(const Config& cfg, const toml::node& node, con
   return out;
 }
 
-// Legs with ground contact: a CTr angle and a PR threshold <leg>.coupling.beta_thr_pr (the
-// legs of features::feature_roots), listed for messages.
-bool has_contact(const model::OdeModel& m, const std::string& leg) {
-  return !leg.empty() && m.parameters().contains(leg + ".coupling.beta_thr_pr");
-}
-
+// The legs with ground contact the model declares (those of features::feature_roots), listed
+// for messages.
 std::string contact_legs(const model::OdeModel& m) {
   std::string legs;
-  for (const auto& ch : m.angles())
-    if (ch.joint == "ctr" && has_contact(m, ch.leg)) legs += (legs.empty() ? "" : ", ") + ch.leg;
+  for (const auto& l : m.structure().contact_legs) legs += (legs.empty() ? "" : ", ") + l.leg;
   return legs;
 }
 
-// "<leg>.touchdown" (beta falling through <leg>.coupling.beta_thr_pr) or "<leg>.liftoff"
+// "<leg>.touchdown" (beta falling through the leg's ground-contact threshold) or "<leg>.liftoff"
 // (rising): the ground-contact events of the walking models (features::feature_roots).
 // Returns the event's leg.
 std::string parse_event(const Config& cfg, const toml::node& node, const model::OdeModel& m, model::CommandTrigger& tr) {
@@ -53,11 +48,12 @@ std::string parse_event(const Config& cfg, const toml::node& node, const model::
   const std::string leg = dot == std::string::npos ? "" : tr.event.substr(0, dot);
   const std::string kind = dot == std::string::npos ? tr.event : tr.event.substr(dot + 1);
   const std::string legs = contact_legs(m);
-  if (!has_contact(m, leg) || (kind != "touchdown" && kind != "liftoff"))
+  const model::ContactLeg* contact = m.contact_leg(leg);
+  if (!contact || (kind != "touchdown" && kind != "liftoff"))
     throw Error(where(cfg, node) + ": unknown event '" + tr.event + "' in [[triggers]] (expected <leg>.touchdown or <leg>.liftoff" +
                 (legs.empty() ? "; this model has no legs with ground contact)" : " with leg one of " + legs + ")"));
-  tr.state = m.state_index(leg + ".ctr.beta");
-  tr.level_param = m.parameters().index(leg + ".coupling.beta_thr_pr");
+  tr.state = contact->beta_state;
+  tr.level_param = contact->threshold_param;
   tr.level_scale = units::kRadPerDeg;  // threshold in deg, beta integrated in rad
   tr.direction = kind == "liftoff" ? +1 : -1;
   return leg;
@@ -74,7 +70,8 @@ void parse_in_stance(const Config& cfg, const toml::node& node, const model::Ode
   for (const toml::node& x : *a) {
     auto leg = x.value<std::string>();
     if (!leg) throw Error(where(cfg, x) + ": 'in_stance' must be an array of leg names, e.g. in_stance = [\"hind\"]");
-    if (!has_contact(m, *leg))
+    const model::ContactLeg* contact = m.contact_leg(*leg);
+    if (!contact)
       throw Error(where(cfg, x) + ": unknown leg '" + *leg + "' in [[triggers]] 'in_stance' (" +
                   (legs.empty() ? "this model has no legs with ground contact)" : "expected one of " + legs + ")"));
     if (*leg == event_leg)
@@ -84,8 +81,8 @@ void parse_in_stance(const Config& cfg, const toml::node& node, const model::Ode
       if (c.leg == *leg) throw Error(where(cfg, x) + ": leg '" + *leg + "' is named twice in 'in_stance'");
     model::StanceCondition c;
     c.leg = *leg;
-    c.state = m.state_index(*leg + ".ctr.beta");
-    c.level_param = m.parameters().index(*leg + ".coupling.beta_thr_pr");
+    c.state = contact->beta_state;
+    c.level_param = contact->threshold_param;
     c.level_scale = units::kRadPerDeg;
     c.stance_side = -1;  // the direction of <leg>.touchdown: beta below the threshold
     tr.in_stance.push_back(std::move(c));

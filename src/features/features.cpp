@@ -8,7 +8,7 @@
 #include "common/units.hpp"
 #include "io/h5_file.hpp"
 #include "model/leg_tables.hpp"
-#include "sensitivity/event_time.hpp"
+#include "features/event_time.hpp"
 
 namespace phasmid::features {
 namespace {
@@ -47,8 +47,8 @@ std::vector<Extremum> channel_extrema(const model::AngleChannel& ch, size_t root
     x.t.g = Eigen::VectorXd::Zero(ns);
     x.angle.g = Eigen::VectorXd::Zero(ns);
     if (with_grad && e.t >= opt.discard_ms) {
-      x.t.g = sensitivity::event_time_sensitivity(e, root, ns);
-      x.angle.g = sensitivity::state_at_event_sensitivity(e, ch.angle_state, x.t.g) * units::kDegPerRad;
+      x.t.g = event_time_sensitivity(e, root, ns);
+      x.angle.g = state_at_event_sensitivity(e, ch.angle_state, x.t.g) * units::kDegPerRad;
     }
     ex.push_back(std::move(x));
   }
@@ -94,41 +94,29 @@ Dual mean(const std::vector<Dual>& xs, size_t ns) {
 }
 
 // ---- per-leg gait features from ground-contact events (docs/walking_model.md) --------------
-// Stance (ground contact) is beta below the leg's PR threshold `<leg>.coupling.beta_thr_pr`
-// (38 deg, Section 3.2): the same criterion that switches the PR sensory pathway. Touch-down is
-// beta falling through it, lift-off beta rising through it; both are located by root finding.
-// The PR system's retractor CPG neuron (Figs. 3.20-3.22 plot it against beta) counts as active
-// above the half-activation of the CPG -> IN synapse (`syn.cpg_in.V_h`, Table A.4), the level at
-// which it starts to drive its pathway; below it the PR system is in protraction.
+// Stance (ground contact) is beta below the threshold of a contact leg the model declares
+// (model::ContactLeg; 38 deg, Section 3.2, the criterion that switches the PR sensory pathway).
+// Touch-down is beta falling through it, lift-off beta rising through it; both are located by
+// root finding. The PR system's retractor CPG neuron (Figs. 3.20-3.22 plot it against beta)
+// counts as active above the declared level; below it the PR system is in protraction.
 constexpr size_t kNoState = static_cast<size_t>(-1);
 struct LegRoot {
   std::string leg;
   size_t beta_state;
   double threshold_deg;
-  size_t retractor_state = kNoState;  // `<leg>.thc.cpg_ret.V`, if the leg has a PR network
+  size_t retractor_state = kNoState;  // if the leg has a PR network
   double retractor_level_mV = 0.0;
 };
-
-size_t find_state(const model::OdeModel& model, const std::string& name) {
-  for (size_t i = 0; i < model.states().size(); ++i)
-    if (model.states()[i].name == name) return i;
-  return kNoState;
-}
 
 // Levels from the parameter vector p (empty: the model's own values).
 std::vector<LegRoot> leg_roots(const model::OdeModel& model, const std::vector<double>& p = {}) {
   std::vector<LegRoot> out;
-  const auto& ps = model.parameters();
-  auto value = [&](const std::string& name) { return p.empty() ? ps.value(name) : p.at(ps.index(name)); };
-  const bool has_level = ps.contains("syn.cpg_in.V_h");
-  for (const auto& ch : model.angles()) {
-    if (ch.joint != "ctr") continue;
-    const std::string thr = ch.leg + ".coupling.beta_thr_pr";
-    if (!ps.contains(thr)) continue;
-    LegRoot r{ch.leg, ch.angle_state, value(thr)};
-    if (has_level) {
-      r.retractor_state = find_state(model, ch.leg + ".thc.cpg_ret.V");
-      r.retractor_level_mV = value("syn.cpg_in.V_h");
+  auto value = [&](size_t k) { return p.empty() ? model.parameters().at(k).value : p.at(k); };
+  for (const model::ContactLeg& l : model.structure().contact_legs) {
+    LegRoot r{l.leg, l.beta_state, value(l.threshold_param)};
+    if (l.retractor_state) {
+      r.retractor_state = *l.retractor_state;
+      r.retractor_level_mV = value(l.retractor_level_param);
     }
     out.push_back(r);
   }
@@ -175,21 +163,18 @@ struct EventDual {
 EventDual event_dual(const solver::Event& e, const solver::RootSpec& root, size_t ns, bool with_grad,
                      const Eigen::VectorXd& dlevel) {
   EventDual x{&e, {e.t, Eigen::VectorXd::Zero(ns)}};
-  if (with_grad && ns) x.t.g = sensitivity::event_time_sensitivity(e, root, ns) + dlevel / e.ydot.at(root.state);
+  if (with_grad && ns) x.t.g = event_time_sensitivity(e, root, ns) + dlevel / e.ydot.at(root.state);
   return x;
 }
 // The angle (deg) of state i at an event, with its total derivative.
 Dual angle_at(const EventDual& x, size_t i, size_t ns, bool with_grad) {
   Dual a{x.e->y.at(i) * units::kDegPerRad, Eigen::VectorXd::Zero(ns)};
-  if (with_grad && ns) a.g = sensitivity::state_at_event_sensitivity(*x.e, i, x.t.g) * units::kDegPerRad;
+  if (with_grad && ns) a.g = state_at_event_sensitivity(*x.e, i, x.t.g) * units::kDegPerRad;
   return a;
 }
-// d level / d p_j for the sensitivity parameters: `factor` for the model parameter `name`.
-Eigen::VectorXd level_gradient(const model::OdeModel& model, const solver::SolveResult& res, size_t ns,
-                               const std::string& name, double factor) {
+// d level / d p_j for the sensitivity parameters: `factor` for the model parameter k.
+Eigen::VectorXd level_gradient(const solver::SolveResult& res, size_t ns, size_t k, double factor) {
   Eigen::VectorXd g = Eigen::VectorXd::Zero(ns);
-  if (ns == 0 || !model.parameters().contains(name)) return g;
-  const size_t k = model.parameters().index(name);
   for (size_t j = 0; j < ns; ++j)
     if (res.sens_params[j] == k) g[j] = factor;
   return g;
@@ -233,6 +218,10 @@ Dual overlap(const Intervals& a, const Intervals& b, size_t ns) {
     }
   return s;
 }
+
+// Ipsilateral leg pairs (a, b) of the phase lags phase_lag.<a>_to_<b>; gait_class reads the
+// first, second and fourth.
+constexpr const char* kLagPairs[][2] = {{"hind", "middle"}, {"middle", "front"}, {"front", "hind"}, {"hind", "front"}};
 
 double wrap01(double x) { return x - std::floor(x); }
 
@@ -288,7 +277,8 @@ std::vector<DualFeature> leg_features(const model::OdeModel& model, const solver
     // Debounce: a swing or stance episode shorter than min_contact_ms (beta rippling around
     // the threshold while a motoneuron fires) is removed with its two crossings.
     const solver::RootSpec& beta_root = roots[first_spec + l];
-    const Eigen::VectorXd dthr = level_gradient(model, res, ns, pre + "coupling.beta_thr_pr", units::kRadPerDeg);
+    const model::ContactLeg& contact = model.structure().contact_legs[l];
+    const Eigen::VectorXd dthr = level_gradient(res, ns, contact.threshold_param, units::kRadPerDeg);
     std::vector<EventDual> ev;
     for (const solver::Event* e : debounced_events(res, first + l, opt.discard_ms, opt.min_contact_ms))
       ev.push_back(event_dual(*e, beta_root, ns, with_grad, dthr));
@@ -334,7 +324,7 @@ std::vector<DualFeature> leg_features(const model::OdeModel& model, const solver
     if (legs[l].retractor_state != kNoState && !ev.empty()) {
       const double t0 = opt.discard_ms, t1 = res.t.empty() ? t0 : res.t.back();
       const solver::RootSpec& cpg_root = roots[first_spec + retractor_root[l]];
-      const Eigen::VectorXd dvh = level_gradient(model, res, ns, "syn.cpg_in.V_h", 1.0);
+      const Eigen::VectorXd dvh = level_gradient(res, ns, contact.retractor_level_param, 1.0);
       std::vector<EventDual> cpg;
       for (const solver::Event* e : debounced_events(res, opt.root_offset + first_spec + retractor_root[l],
                                                      opt.discard_ms, opt.min_contact_ms))
@@ -366,9 +356,8 @@ std::vector<DualFeature> leg_features(const model::OdeModel& model, const solver
     value = circular_mean(ph, ns);
     return true;
   };
-  const char* pairs[][2] = {{"hind", "middle"}, {"middle", "front"}, {"front", "hind"}, {"hind", "front"}};
   std::map<std::string, double> lags;
-  for (auto& pr : pairs) {
+  for (auto& pr : kLagPairs) {
     Dual v{0.0, zero};
     if (lag(pr[0], pr[1], v)) {
       lags[std::string(pr[0]) + "_to_" + pr[1]] = v.v;
@@ -443,7 +432,62 @@ std::vector<DualFeature> compute(const model::OdeModel& model, const solver::Sol
   return out;
 }
 
+void channel_catalogue(const model::OdeModel& model, std::vector<FeatureInfo>& out) {
+  if (model.angles().empty()) return;
+  const auto& first = model.angles().front();
+  out.push_back({"period_ms", "ms", true, "cycle period of the first angle channel (" + first.leg + "." + first.joint + ")"});
+  for (size_t c = 0; c < model.angles().size(); ++c) {
+    const auto& ch = model.angles()[c];
+    const std::string pre = ch.leg + "." + ch.joint + ".";
+    const model::JointNaming nm = model::joint_naming(model::parse_joint(ch.joint));
+    const std::string inc = nm.phase_inc, dec = nm.phase_dec;
+    out.push_back({pre + "period_ms", "ms", true, "mean time between the angle's maxima"});
+    out.push_back({pre + inc + "_fraction", "1", true, "mean " + inc + " time / period"});
+    if (c > 0)
+      out.push_back({pre + "phase_lag", "1", true, "mean lag of the angle's maxima after the first channel's, in its periods"});
+    out.push_back({pre + inc + "_ms", "ms", true, "mean duration of " + inc + " (angle rising, minimum to maximum)"});
+    out.push_back({pre + dec + "_ms", "ms", true, "mean duration of " + dec + " (angle falling, maximum to minimum)"});
+    out.push_back({pre + "phase_ratio", "1", true, inc + " time / " + dec + " time"});
+    out.push_back({pre + "angle_min_deg", "deg", true, "mean angle at the turning-point minima"});
+    out.push_back({pre + "angle_max_deg", "deg", true, "mean angle at the turning-point maxima"});
+  }
+}
+
+void leg_catalogue(const model::OdeModel& model, std::vector<FeatureInfo>& out) {
+  for (const model::ContactLeg& l : model.structure().contact_legs) {
+    const std::string pre = l.leg + ".";
+    for (const auto& ch : model.angles())
+      if (ch.leg == l.leg && ch.joint != "ctr")
+        out.push_back({pre + ch.joint + ".stance_change_deg", "deg", true,
+                       "mean change of the " + ch.joint + " angle from touch-down to lift-off"});
+    out.push_back({pre + "step_period_ms", "ms", true, "mean time between lift-offs"});
+    out.push_back({pre + "stance_ms", "ms", true, "mean stance duration (touch-down to lift-off)"});
+    out.push_back({pre + "swing_ms", "ms", true, "mean swing duration (lift-off to touch-down)"});
+    out.push_back({pre + "duty_factor", "1", true, "stance / (stance + swing)"});
+    if (l.retractor_state) {
+      out.push_back({pre + "protraction_in_stance_fraction", "1", true,
+                     "fraction of the PR protraction (retractor CPG inactive) spent in stance"});
+      out.push_back({pre + "stance_retraction_fraction", "1", true, "fraction of the stance with the retractor CPG active"});
+    }
+  }
+  auto has = [&](const char* leg) { return model.contact_leg(leg) != nullptr; };
+  for (auto& pr : kLagPairs)
+    if (has(pr[0]) && has(pr[1]))
+      out.push_back({std::string("phase_lag.") + pr[0] + "_to_" + pr[1], "1", true,
+                     std::string("circular mean lag of the ") + pr[1] + " leg's lift-offs after the " + pr[0] +
+                         " leg's, in its step periods"});
+  if (has("hind") && has("middle") && has("front"))
+    out.push_back({"gait_class", "1", false, "2 tripod, 1 tetrapod, 0 irregular, from the three phase lags (a class: no gradient)"});
+}
+
 }  // namespace
+
+std::vector<FeatureInfo> feature_catalogue(const model::OdeModel& model) {
+  std::vector<FeatureInfo> out;
+  channel_catalogue(model, out);
+  leg_catalogue(model, out);
+  return out;
+}
 
 std::vector<solver::RootSpec> feature_roots(const model::OdeModel& model) { return feature_roots(model, {}); }
 

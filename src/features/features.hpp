@@ -2,7 +2,7 @@
 // Gait features from located events (docs/features.md): extrema of every joint angle are found
 // by CVODES root finding on the angular velocity, so feature values are exact up to the
 // solver tolerance and differentiable with respect to the parameters (see
-// src/sensitivity/event_time.hpp).
+// src/features/event_time.hpp).
 #include <string>
 #include <vector>
 
@@ -36,6 +36,14 @@ struct Feature {
   std::string unit;  // "ms", "deg", "1"
 };
 
+// A feature a model can produce: what `phasmid features` prints and a fit may target.
+struct FeatureInfo {
+  std::string name;
+  std::string unit;
+  bool differentiable;      // compute_feature_gradients gives an event-time gradient (else a class)
+  std::string description;  // one line
+};
+
 // Per-parameter derivative of a feature (with respect to result.sens_params, in order).
 struct FeatureGradient {
   Feature feature;
@@ -49,9 +57,9 @@ int classify_gait(double hind_to_middle, double middle_to_front, double hind_to_
 const char* gait_class_name(int gait_class);
 
 // One root per angle channel, in channel order: g = y[velocity_state] - 0, both directions;
-// then, for walking models, one per leg: beta crossing `<leg>.coupling.beta_thr_pr`
-// (touch-down falling, lift-off rising), used by the per-leg gait features; then one per leg
-// with a PR network: its retractor CPG `<leg>.thc.cpg_ret.V` crossing `syn.cpg_in.V_h`.
+// then one per contact leg the model declares (model::ContactLeg): beta crossing its threshold
+// (touch-down falling, lift-off rising), used by the per-leg gait features; then one per
+// contact leg with a retractor CPG: its voltage crossing the declared level.
 // Pass these first in the root list given to Simulator::run (or set FeatureOptions::root_offset).
 // The crossing levels come from the parameter vector p (the model's own values without it):
 // pass the vector the run uses, so that a run with a perturbed or fitted threshold locates its
@@ -67,6 +75,7 @@ std::vector<solver::RootSpec> feature_roots(const model::OdeModel& model);
 // and across legs `phase_lag.<a>_to_<b>` and `gait_class` (docs/walking_model.md); all with
 // event-time gradients, gait_class with a zero one.
 // Features that cannot be computed (too few cycles after discard_ms) are omitted.
+// feature_catalogue(model) lists every feature this can return for the model.
 std::vector<Feature> compute_features(const model::OdeModel& model, const solver::SolveResult& result,
                                       const FeatureOptions& options = {});
 
@@ -75,6 +84,10 @@ std::vector<Feature> compute_features(const model::OdeModel& model, const solver
 std::vector<FeatureGradient> compute_feature_gradients(const model::OdeModel& model,
                                                        const solver::SolveResult& result,
                                                        const FeatureOptions& options = {});
+
+// Every feature compute_features can produce for this model (a run too short for some gives
+// fewer), derived from its angle channels and declared contact legs, in compute order.
+std::vector<FeatureInfo> feature_catalogue(const model::OdeModel& model);
 
 // `/features/<name>` scalar datasets with a `units` attribute (docs/hdf5.md).
 void write_features_h5(io::H5Writer& out, const std::vector<Feature>& features);

@@ -8,7 +8,6 @@
 #include "common/units.hpp"
 #include "io/h5_file.hpp"
 #include "io/trajectory_writer.hpp"
-#include "model/leg_tables.hpp"
 
 namespace phasmid::fit {
 namespace {
@@ -30,46 +29,11 @@ size_t find_channel(const model::OdeModel& m, const std::string& name, const std
   throw Error((origin.empty() ? "" : origin + ": ") + "the model has no angle '" + name + "' (it has: " + have + ")");
 }
 
-std::set<std::string> known_features(const model::OdeModel& m) {
-  std::set<std::string> f = {"period_ms"};
-  for (auto& a : m.angles()) {
-    model::JointNaming n = model::joint_naming(model::parse_joint(a.joint));
-    std::string pre = channel_name(a) + ".";
-    for (std::string s : {std::string("period_ms"), std::string(n.phase_inc) + "_ms", std::string(n.phase_dec) + "_ms",
-                          std::string(n.phase_inc) + "_fraction", std::string("phase_ratio"), std::string("angle_min_deg"),
-                          std::string("angle_max_deg"), std::string("phase_lag")})
-      f.insert(pre + s);
-  }
-  return f;
-}
-
-// The legs of a walking model: those with a ground-contact threshold (features.cpp's criterion).
-std::vector<std::string> walking_legs(const model::OdeModel& m) {
-  std::vector<std::string> legs;
-  for (auto& a : m.angles())
-    if (a.joint == "ctr" && m.parameters().contains(a.leg + ".coupling.beta_thr_pr")) legs.push_back(a.leg);
-  return legs;
-}
-
-// Per-leg features of the walking models (features::compute_features), with event-time
-// gradients like the channel features.
-std::set<std::string> leg_feature_names(const model::OdeModel& m) {
-  std::set<std::string> f;
-  const std::vector<std::string> legs = walking_legs(m);
-  for (auto& l : legs) {
-    for (const char* s : {"step_period_ms", "stance_ms", "swing_ms", "duty_factor", "thc.stance_change_deg",
-                          "fti.stance_change_deg", "protraction_in_stance_fraction", "stance_retraction_fraction"})
-      f.insert(l + "." + s);
-    for (auto& o : legs)
-      if (o != l) f.insert("phase_lag." + l + "_to_" + o);
-  }
-  return f;
-}
-
-// Features without a useful gradient (a class: piecewise constant): derivative-free optimisers only.
-std::set<std::string> value_only_features(const model::OdeModel& m) {
-  if (walking_legs(m).size() >= 3) return {"gait_class"};
-  return {};
+// The features a fit may target, from the model's feature catalogue: those with event-time
+// gradients, and those without (classes) for derivative-free optimisers only.
+void target_features(const model::OdeModel& m, std::set<std::string>& with_gradient, std::set<std::string>& values_only) {
+  for (const features::FeatureInfo& f : features::feature_catalogue(m))
+    (f.differentiable ? with_gradient : values_only).insert(f.name);
 }
 
 std::vector<size_t> match_parameters(const model::ParameterSet& ps, const std::string& id, const std::string& w) {
@@ -163,8 +127,8 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
   // applies the jump conditions and s(0) = dy0/dp (docs/sensitivity.md).
 
   // Targets: validate and label residuals.
-  std::set<std::string> feats = known_features(model_), values_only = value_only_features(model_);
-  for (auto& n : leg_feature_names(model_)) feats.insert(n);
+  std::set<std::string> feats, values_only;
+  target_features(model_, feats, values_only);
   for (auto& f : targets_.features) {
     if (values_only.count(f.feature)) {
       if (value_only_feature_.empty()) value_only_feature_ = f.feature;

@@ -20,19 +20,18 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
     w.write("/trajectory/angular_velocity/" + a.leg + "/" + a.joint, col, "deg/s");
   }
   // Footfall pattern of walking models: 1 swing, 0 stance (ground contact: beta below the
-  // leg's `<leg>.coupling.beta_thr_pr`, docs/walking_model.md).
-  for (const auto& a : m.angles()) {
-    const std::string thr = a.leg + ".coupling.beta_thr_pr";
-    if (a.joint != "ctr" || !m.parameters().contains(thr)) continue;
-    const double thr_rad = units::deg_to_rad(m.parameters().value(thr));
-    for (size_t k = 0; k < n_out; ++k) col[k] = r.state(k, a.angle_state) < thr_rad ? 0.0 : 1.0;
-    w.write("/trajectory/footfall/" + a.leg, col, "1");
+  // leg's threshold, docs/walking_model.md).
+  auto threshold_deg = [&](const model::ContactLeg& l) { return m.parameters().at(l.threshold_param).value; };
+  for (const model::ContactLeg& l : m.structure().contact_legs) {
+    const double thr_rad = units::deg_to_rad(threshold_deg(l));
+    for (size_t k = 0; k < n_out; ++k) col[k] = r.state(k, l.beta_state) < thr_rad ? 0.0 : 1.0;
+    w.write("/trajectory/footfall/" + l.leg, col, "1");
   }
   // Six-leg pattern of the three-leg model (Section 2.5.4): the left side L1-L3 is the
   // simulated front, middle, hind leg; the right side R1-R3 the same pattern delayed by
-  // contralateral.lag * gait.period_ms (linear interpolation; the first value before that).
-  if (m.parameters().contains("contralateral.lag") && m.parameters().contains("gait.period_ms")) {
-    const double shift = m.parameters().value("contralateral.lag") * m.parameters().value("gait.period_ms");
+  // the declared lag * period (linear interpolation; the first value before that).
+  if (const auto& copy = m.structure().contralateral) {
+    const double shift = m.parameters().at(copy->lag_param).value * m.parameters().at(copy->period_param).value;
     auto delayed = [&](const std::vector<double>& x) {
       std::vector<double> y(n_out);
       for (size_t k = 0; k < n_out; ++k) {
@@ -52,9 +51,9 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
       for (size_t k = 0; k < n_out; ++k) x[k] = units::rad_to_deg(r.state(k, a.angle_state));
       w.write("/trajectory/angles/L" + it->second + "/" + a.joint, x, "deg");
       w.write("/trajectory/angles/R" + it->second + "/" + a.joint, delayed(x), "deg");
-      const std::string thr = a.leg + ".coupling.beta_thr_pr";
-      if (a.joint == "ctr" && m.parameters().contains(thr)) {
-        for (auto& v : x) v = v < m.parameters().value(thr) ? 0.0 : 1.0;
+      const model::ContactLeg* contact = m.contact_leg(a.leg);
+      if (a.joint == "ctr" && contact) {
+        for (auto& v : x) v = v < threshold_deg(*contact) ? 0.0 : 1.0;
         w.write("/trajectory/footfall/L" + it->second, x, "1");
         auto d = delayed(x);
         for (auto& v : d) v = v < 0.5 ? 0.0 : 1.0;
@@ -63,17 +62,20 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
     }
   }
   // Curve walking (Section 3.2.3): body path from the two middle legs, docs/walking_model.md.
-  if (m.parameters().contains("body.reach_mm") && m.parameters().contains("L2.coupling.beta_thr_pr")) {
+  const model::ContactLeg* body_left = m.structure().body ? m.contact_leg(m.structure().body->left_leg) : nullptr;
+  if (body_left) {
+    const model::BodyGeometry& body = *m.structure().body;
     std::map<std::string, std::vector<double>> a;
     for (const auto& ch : m.angles()) {
-      if (ch.leg != "L2" && ch.leg != "R2") continue;
+      if (ch.leg != body.left_leg && ch.leg != body.right_leg) continue;
       std::vector<double> x(n_out);
       for (size_t k = 0; k < n_out; ++k) x[k] = units::rad_to_deg(r.state(k, ch.angle_state));
       a[ch.leg + "." + ch.joint] = x;
     }
+    const std::string L = body.left_leg + ".", R = body.right_leg + ".";
     model::BodyPath bp = model::integrate_body_path(
-        r.t, a["L2.thc"], a["L2.ctr"], a["R2.thc"], a["R2.ctr"], m.parameters().value("L2.coupling.beta_thr_pr"),
-        m.parameters().value("body.reach_mm"), m.parameters().value("body.half_width_mm"));
+        r.t, a[L + "thc"], a[L + "ctr"], a[R + "thc"], a[R + "ctr"], threshold_deg(*body_left),
+        m.parameters().at(body.reach_param).value, m.parameters().at(body.half_width_param).value);
     w.write("/body/x", bp.x_mm, "mm");
     w.write("/body/y", bp.y_mm, "mm");
     w.write("/body/heading", bp.heading_deg, "deg");

@@ -70,6 +70,9 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
 
   const std::string pre = leg + ".coupling.";
   L.beta_thr_pr = def(pre + "beta_thr_pr", 38, "deg", k32, "beta below this: ground contact, PR sensory IN excited");
+  // The retractor CPG (Figs. 3.20-3.22 plot it against beta) counts as active above the
+  // half-activation of the CPG -> IN synapse, the level at which it drives its pathway.
+  m.add_contact_leg({leg, L.beta_state, L.beta_thr_pr, m.neurons()[L.pr.cpg_inc].state, c.cpg_in.V_h});
   size_t beta_fe = def(pre + "beta_thr_fe", 50, "deg", k32, "beta below this: FE sensory IN (IN12) excited");
   size_t gamma_thr = def(pre + "gamma_thr", 90, "deg", k32, "gamma above this during ground contact: IN12 reduced (fCO)");
   L.width = def(pre + "width_deg", 1.0, "deg",
@@ -322,10 +325,11 @@ std::unique_ptr<NetworkModel> build_three_leg_model(const ThreeLegOptions& o) {
     release[1] = start + T / 3;
     release[0] = start + 2 * T / 3;
   }
-  def("gait.period_ms", T, "ms", std::string(k33) + " (T_4pod = 510 ms, T_3pod = 442 ms)",
+  const size_t period = def("gait.period_ms", T, "ms", std::string(k33) + " (T_4pod = 510 ms, T_3pod = 442 ms)",
       "cycle period of the gait: spacing of the start times and of the contralateral copy", 1);
-  def("contralateral.lag", tripod ? 0.5 : 1.0 / 3, "1", "Knops 2013, Sections 2.5.4 and 3.3 (33% tetrapod, 50% tripod)",
+  const size_t lag = def("contralateral.lag", tripod ? 0.5 : 1.0 / 3, "1", "Knops 2013, Sections 2.5.4 and 3.3 (33% tetrapod, 50% tripod)",
       "phase lag of the right side (R1-R3) behind the left (L1-L3) in the six-leg output", 0, 1);
+  m->set_contralateral_copy({lag, period});
   std::vector<LegNetwork> L;
   for (int i = 0; i < 3; ++i) {
     LegOptions lo;
@@ -403,9 +407,11 @@ std::unique_ptr<NetworkModel> build_curve_walking_model(MotoneuronModel mn) {
     o.ld_hold_g_pr_source = std::string(kChoice) + ": PR silent until the start time, as syn.command_inh.g (Section 2.5.3: the PR is a reflex chain)";
     add_leg_network(*m, c, leg, o);
   }
-  def("body.reach_mm", 15.0, "mm", std::string(kChoice) + ": horizontal distance ThC joint - foot (femur 13 mm, tibia 12 mm, Table A.13, projected)",
+  const size_t reach = def("body.reach_mm", 15.0, "mm", std::string(kChoice) + ": horizontal distance ThC joint - foot (femur 13 mm, tibia 12 mm, Table A.13, projected)",
       "length of the leg's horizontal lever in the kinematic body model", 0);
-  def("body.half_width_mm", 2.0, "mm", std::string(kChoice) + ": half the mesothorax width", "lateral offset of the ThC joints", 0);
+  const size_t half_width = def("body.half_width_mm", 2.0, "mm", std::string(kChoice) + ": half the mesothorax width",
+                                "lateral offset of the ThC joints", 0);
+  m->set_body_geometry({"L2", "R2", reach, half_width});
   return m;
 }
 

@@ -14,6 +14,7 @@ size_t NetworkModel::add_nap_neuron(const std::string& name, const NapIdx& q, do
   y0_.push_back(V0);
   y0_.push_back(h0);
   neurons_.push_back(n);
+  structure_.neurons.push_back({name, n.state});
   all_.neurons.push_back(neurons_.size() - 1);
   return neurons_.size() - 1;
 }
@@ -29,6 +30,7 @@ size_t NetworkModel::add_motoneuron(const std::string& name, const MotoneuronIdx
     for (double v : {-65.0, 0.02, 0.98, 0.05, 0.0}) y0_.push_back(v);
   }
   neurons_.push_back(n);
+  structure_.neurons.push_back({name, n.state});
   all_.neurons.push_back(neurons_.size() - 1);
   return neurons_.size() - 1;
 }

@@ -145,6 +145,10 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   void set_muscle_activation_params(size_t a0, size_t b, size_t V_spike, size_t width) {
     act_a0_ = a0; act_b_ = b; act_V_ = V_spike; act_w_ = width;
   }
+  // Declarations of the model's structure (OdeModel::structure()); neurons declare themselves.
+  void add_contact_leg(ContactLeg leg) { structure_.contact_legs.push_back(std::move(leg)); }
+  void set_contralateral_copy(ContralateralCopy c) { structure_.contralateral = c; }
+  void set_body_geometry(BodyGeometry b) { structure_.body = std::move(b); }
   size_t neuron_index(const std::string& name) const;
   const std::vector<Neuron>& neurons() const { return neurons_; }
   const std::vector<Joint>& joints() const { return joints_; }

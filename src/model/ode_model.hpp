@@ -8,6 +8,7 @@
 #include <ceres/jet.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -54,6 +55,50 @@ struct AngleChannel {
   size_t velocity_state;  // index of its angular velocity (rad/ms)
 };
 
+// ---- what the model has, declared by its builder (docs/walking_model.md) --------------------
+// Generic layers (features, triggers, trajectory writer, fit) learn a model's structure from
+// this declaration only, never from parameter names.
+
+// A leg with ground contact: stance while its CTr angle beta is below the threshold; the
+// touch-down and lift-off events, footfall patterns and per-leg gait features follow from it.
+struct ContactLeg {
+  std::string leg;               // front | middle | hind (or L2, R2)
+  size_t beta_state;             // CTr angle (rad)
+  size_t threshold_param;        // ground-contact threshold on beta (deg)
+  // The PR system's retractor CPG neuron (V, mV), counted active above the parameter
+  // retractor_level_param (mV); none if the leg has no PR network.
+  std::optional<size_t> retractor_state;
+  size_t retractor_level_param = 0;
+};
+
+// A neuron of a network model: its name and membrane potential state (mV).
+struct NeuronInfo {
+  std::string name;  // "middle.fti.cpg_flx"
+  size_t v_state;
+};
+
+// The six-leg output of a three-leg model: the right side is the simulated left side delayed
+// by lag * period (parameters, 1 and ms).
+struct ContralateralCopy {
+  size_t lag_param;
+  size_t period_param;
+};
+
+// Curve walking: the two legs (each a ContactLeg with thc and ctr channels) that move the
+// kinematic body (model/body_kinematics.hpp) and its geometry parameters (mm).
+struct BodyGeometry {
+  std::string left_leg, right_leg;
+  size_t reach_param;
+  size_t half_width_param;
+};
+
+struct ModelStructure {
+  std::vector<ContactLeg> contact_legs;  // in the order of their CTr angle channels
+  std::vector<NeuronInfo> neurons;
+  std::optional<ContralateralCopy> contralateral;
+  std::optional<BodyGeometry> body;
+};
+
 class OdeModel {
  public:
   virtual ~OdeModel() = default;
@@ -65,6 +110,9 @@ class OdeModel {
   ParameterSet& parameters() { return params_; }
   const ParameterSet& parameters() const { return params_; }
   const std::vector<AngleChannel>& angles() const { return angles_; }
+  const ModelStructure& structure() const { return structure_; }
+  // The contact leg named `leg`, or nullptr.
+  const ContactLeg* contact_leg(const std::string& leg) const;
 
   virtual std::vector<double> initial_state(const std::vector<double>& p) const = 0;
   virtual void rhs(double t, const double* y, const double* p, double* ydot) const = 0;
@@ -100,6 +148,7 @@ class OdeModel {
   size_t add_state(std::string name, std::string unit);
   std::vector<StateInfo> states_;
   std::vector<AngleChannel> angles_;
+  ModelStructure structure_;
   ParameterSet params_;
   std::vector<CommandTrigger> triggers_;
 };

@@ -202,4 +202,20 @@ TEST(FitConfig, EveryExampleFitConfigBuildsItsProblem) {
   EXPECT_THROW(fit::check_optimizer(q, ceres), Error);
   EXPECT_NO_THROW(fit::check_optimizer(q, bobyqa));
   EXPECT_NO_THROW(fit::check_optimizer(p, ceres));
+  // Targets come from the feature catalogue: a feature the model never computes (the first
+  // channel has no phase lag; front -> middle is not one of the leg pairs) is an error at its
+  // config line that lists the features with gradients and, apart, the class.
+  for (const char* never : {"front.thc.phase_lag", "phase_lag.front_to_middle", "L2.step_period_ms"}) {
+    fit::Targets t = spec.targets;
+    t.features[0].feature = never;
+    try {
+      fit::FitProblem r(*m, spec.parameters, t, spec.problem);
+      ADD_FAILURE() << never << " accepted";
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      EXPECT_EQ(msg.rfind(t.features[0].origin + ": unknown feature '" + never + "'", 0), 0u) << msg;
+      EXPECT_NE(msg.find("phase_lag.hind_to_middle"), std::string::npos) << msg;
+      EXPECT_NE(msg.find("values only, for derivative-free optimisers: gait_class)"), std::string::npos) << msg;
+    }
+  }
 }

@@ -7,7 +7,7 @@
 
 #include "solver/simulator.hpp"
 
-namespace phasmid::sensitivity {
+namespace phasmid::features {
 
 // d t* / d p_j for every sensitivity parameter j (ms per parameter unit). Throws Error when
 // the crossing is tangential (f[state] == 0), where the event time is not differentiable.
@@ -16,4 +16,4 @@ Eigen::VectorXd event_time_sensitivity(const solver::Event& event, const solver:
 // d y_i(t*(p); p) / d p_j = s_ij + f_i dt*/dp_j.
 Eigen::VectorXd state_at_event_sensitivity(const solver::Event& event, size_t i, const Eigen::VectorXd& dt_dp);
 
-}  // namespace phasmid::sensitivity
+}  // namespace phasmid::features

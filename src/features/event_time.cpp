@@ -1,10 +1,10 @@
-#include "sensitivity/event_time.hpp"
+#include "features/event_time.hpp"
 
 #include <cmath>
 
 #include "common/error.hpp"
 
-namespace phasmid::sensitivity {
+namespace phasmid::features {
 
 Eigen::VectorXd event_time_sensitivity(const solver::Event& e, const solver::RootSpec& root, size_t ns) {
   Eigen::VectorXd dt(ns);
@@ -24,4 +24,4 @@ Eigen::VectorXd state_at_event_sensitivity(const solver::Event& e, size_t i, con
   return d;
 }
 
-}  // namespace phasmid::sensitivity
+}  // namespace phasmid::features
