@@ -76,6 +76,19 @@ class CruseScenario : public Scenario {
   std::string kind() const override { return "cruse1980"; }
   model::ParameterSet& parameters() override { return params_; }
   bool takes_simulation_settings() const override { return false; }
+  std::vector<features::FeatureInfo> feature_catalogue() const override {
+    std::vector<features::FeatureInfo> c = {
+        {"locked", "1", false, "1 when every leg steps once per OL1 period throughout the analysis window"},
+        {"period_ms", "ms", false, "period of OL1 over the analysis window"},
+        {"lag_L3_L1_ms", "ms", false, "Graham's lag: L3 protraction onset to the next L1 onset"},
+        {"lag_R3_R1_ms", "ms", false, "Graham's lag: R3 protraction onset to the next R1 onset"}};
+    for (const auto& leg : cruse::leg_names())
+      c.push_back({"phase." + leg, "1", false, "protraction onset of " + leg + " after OL1's, fraction of the period"});
+    if (!periods_.empty())
+      c.push_back({"table1_stable", "1", false,
+                   "1 when at every stability period all ten Table 2 starts lock into one pattern with L1-R2, L2-R3 in phase"});
+    return c;
+  }
 
   // The base parameters with the vector's values; Parameters::set refuses what the model
   // cannot run (a start position outside Table 2, a non-positive rate).

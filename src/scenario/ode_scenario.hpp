@@ -16,6 +16,9 @@ class OdeScenario : public Scenario {
 
   std::string kind() const override { return model_->kind(); }
   model::ParameterSet& parameters() override { return model_->parameters(); }
+  std::vector<features::FeatureInfo> feature_catalogue() const override {
+    return features::feature_catalogue(*model_);
+  }
   std::unique_ptr<ScenarioRun> run(const std::vector<double>& p, const RunSettings& settings) const override;
   std::vector<features::Feature> evaluate_features(const std::vector<double>& p,
                                                    const RunSettings& settings) const override;

@@ -72,6 +72,10 @@ class Scenario {
   // Whether [simulation] applies to this kind (false: the kind's own parameters set its run).
   virtual bool takes_simulation_settings() const { return true; }
 
+  // Every feature a run can report: name, unit, whether it has a derivative with respect to
+  // the parameters, and what it means (docs/features.md).
+  virtual std::vector<features::FeatureInfo> feature_catalogue() const = 0;
+
   virtual std::unique_ptr<ScenarioRun> run(const std::vector<double>& p, const RunSettings& settings) const = 0;
   // Features only (sweeps, fits without trajectories): the same values run(p).features() gives.
   virtual std::vector<features::Feature> evaluate_features(const std::vector<double>& p,
