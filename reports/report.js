@@ -488,11 +488,15 @@
     var panelBy = opts.map(function (o) { return o.name; }).concat(extraFree ? names.slice(2) : []);
     var notes = (names.length > 2 && !extraFree ? [names.slice(2).join(', ') + ' set together with them'] : [])
       .concat(panelBy.length ? ['one panel per value of ' + panelBy.join(' and ')] : []);
-    var sec = section('sweep', 'Sweep', pts.length && names.length ? 'Features and gait class at each of the ' + pts.length + ' sweep points, over the first two swept parameters' +
-      (notes.length ? ' (' + notes.join('; ') + ')' : '') + '.' : 'Results over the swept parameter values.');
-    sweepAxes(sec, s);
+    var oneAtATime = s.design === 'one_at_a_time';
+    var intro = oneAtATime ? 'A one-at-a-time sweep of ' + pts.length + ' points: each of ' + names.join(', ') + ' varied alone, the others at their base values (the features of each point are in /sweep/features and not drawn)' +
+      (s.ranges ? '; below, the range of each parameter in which ' + s.ranges.feature + ' = 1.' : '.')
+      : pts.length && names.length ? 'Features and gait class at each of the ' + pts.length + ' sweep points, over the first two swept parameters' +
+      (notes.length ? ' (' + notes.join('; ') + ')' : '') + '.' : 'Results over the swept parameter values.';
+    var sec = section('sweep', 'Sweep', intro);
+    if (s.ranges) sweepRanges(sec, s.ranges);
     if (!pts.length || !names.length) {
-      if (!(s.axes || []).length && !(s.extra || []).length) sec.appendChild(el('p', { cls: 'empty', text: 'No sweep points in this file.' }));
+      if (!s.ranges) sec.appendChild(el('p', { cls: 'empty', text: 'No sweep points in this file.' }));
       return;
     }
     var pname = function (j) { return withUnits(names[j], units[j]); };
@@ -563,7 +567,8 @@
         }
       });
     }
-    (s.features || []).forEach(function (ft) {
+    // A one-at-a-time design has no two-parameter plane to draw features over.
+    (oneAtATime ? [] : s.features || []).forEach(function (ft) {
       var rng = finiteRange(ft.values);
       var label = withUnits(ft.name, ft.units);
       drawPanels('fig-sweep-' + safeId(ft.name), ft.name, function (i) { return ft.values[i]; }, function (i) {
@@ -578,7 +583,7 @@
       var extra = PALETTE.filter(function (c) { return Object.keys(GAIT_COLORS).map(function (k) { return GAIT_COLORS[k]; }).indexOf(c) < 0; });
       var cmap = {};
       classes.forEach(function (c, i) { cmap[c] = GAIT_COLORS[c] || extra[i % extra.length]; });
-      drawPanels('fig-sweep-gait', 'Gait class', function (i) { return gait[i]; }, function (i) { return status[i] !== 'ok' ? GAIT_COLORS.failed : cmap[gait[i]]; },
+      if (!oneAtATime) drawPanels('fig-sweep-gait', 'Gait class', function (i) { return gait[i]; }, function (i) { return status[i] !== 'ok' ? GAIT_COLORS.failed : cmap[gait[i]]; },
         'gait class', function (fig) { legend(fig, classes.map(function (c) { return [c, cmap[c]]; }).concat(classes.indexOf('failed') < 0 && status.some(function (st) { return st !== 'ok'; }) ? [['failed', GAIT_COLORS.failed]] : [])); });
       var counts = classes.map(function (c) { return [c, gait.filter(function (g) { return g === c; }).length]; });
       table(sec, 'table-sweep-gaits', 'Gait classes', ['gait class', 'points'], counts, [false, true]);
@@ -590,35 +595,39 @@
     }
   }
 
-  // Sweeps along single axes: /sweep/<parameter>/values with same-length results (e.g. stable 0/1).
-  function sweepAxes(sec, s) {
-    var axes = s.axes || [];
-    if (axes.length) {
-      var grid = el('div', { cls: 'grid2' });
-      sec.appendChild(grid);
-      axes.forEach(function (ax) {
-        if (!ax.series.length) return;
-        var id = 'fig-sweep-axis-' + safeId(ax.name);
-        var yl = ax.series.length === 1 ? withUnits(ax.series[0].name, ax.series[0].units) : 'value';
-        var f = figure(grid, id, ax.series.map(function (r) { return withUnits(r.name, r.units); }).join(', ') + ' at each swept value of ' + ax.name + '.', 300);
-        draw(id, f, {
-          type: 'scatter',
-          data: { datasets: ax.series.map(function (r, i) {
-            return { label: withUnits(r.name, r.units), data: ax.x.map(function (x, k) { return { x: x, y: r.values[k] }; }).sort(function (a, b) { return a.x - b.x; }),
-              showLine: true, stepped: ax.series.length === 1 && r.values.every(function (v) { return v === 0 || v === 1 || v === null; }) ? 'middle' : false,
-              borderColor: PALETTE[i % PALETTE.length], backgroundColor: PALETTE[i % PALETTE.length], pointRadius: 2.5 };
-          }) },
-          options: { plugins: { title: titleOpt(ax.series.map(function (r) { return r.name; }).join(', ') + ' over ' + ax.name), legend: { display: ax.series.length > 1 } },
-            scales: { x: axis(withUnits(ax.name, ax.units)), y: axis(yl) } }
-        });
+  // Range analysis of a one-at-a-time sweep (/sweep/ranges): per parameter, where the 0/1
+  // feature is 1 along its own axis, with the smallest and largest such value marked.
+  function sweepRanges(sec, rg) {
+    var params = rg.parameters || [];
+    if (!params.length) return;
+    var grid = el('div', { cls: 'grid2' });
+    sec.appendChild(grid);
+    params.forEach(function (p) {
+      var id = 'fig-range-' + safeId(p.name);
+      var xl = withUnits(p.name, p.units);
+      var bounds = (p.lower === null ? 'no value in range' : 'in range from ' + fmt(p.lower) + ' to ' + fmt(p.upper) + (p.contiguous ? '' : ', with gaps'));
+      var f = figure(grid, id, rg.feature + ' (1 = in range) at each value of ' + p.name + ', the others at their base values; dashed: smallest and largest value in range (' + bounds + ').', 260);
+      var mark = function (x, label, color) {
+        return { label: label + ' ' + fmt(x), data: [{ x: x, y: -0.1 }, { x: x, y: 1.1 }], showLine: true, borderDash: [6, 4], borderWidth: 1.5,
+          borderColor: color, backgroundColor: color, pointRadius: 0 };
+      };
+      var sets = [{ label: rg.feature, data: p.values.map(function (x, k) { return { x: x, y: p.in_range[k] }; }),
+        showLine: true, stepped: 'middle', borderColor: PALETTE[0], borderWidth: 1.5, pointRadius: 3,
+        pointBackgroundColor: p.in_range.map(function (v) { return v ? PALETTE[2] : PALETTE[1]; }) }];
+      if (p.lower !== null) sets.push(mark(p.lower, 'lower', PALETTE[3]), mark(p.upper, 'upper', PALETTE[4]));
+      draw(id, f, {
+        type: 'scatter', data: { datasets: sets },
+        options: { plugins: { title: titleOpt(rg.feature + ' over ' + p.name), legend: { display: p.lower !== null } },
+          scales: { x: axis(xl, { min: Math.min.apply(null, p.values), max: Math.max.apply(null, p.values) }),
+            y: axis(rg.feature + ' (1)', { min: -0.1, max: 1.1, afterBuildTicks: function (a) { a.ticks = [{ value: 0 }, { value: 1 }]; } }) } }
       });
-      var rows = [];
-      axes.forEach(function (ax) { ax.scalars.forEach(function (c) { rows.push([ax.name, c.name, c.value, c.units || '']); }); });
-      if (rows.length) table(sec, 'table-sweep-axes', 'Results per swept parameter', ['parameter', 'result', 'value', 'unit'], rows, [false, false, true, false]);
-    }
-    if ((s.extra || []).length)
-      table(sec, 'table-sweep-extra', 'Other sweep data', ['dataset', 'values', 'unit'],
-        s.extra.map(function (e) { return [e.name, e.values.map(fmt).join(', '), e.units || '']; }), [false, false, false]);
+    });
+    table(sec, 'table-sweep-ranges', 'Range of ' + rg.feature + ' = 1 per parameter (each varied alone)',
+      ['parameter', 'lower', 'upper', 'unit', 'contiguous', 'values in range'],
+      params.map(function (p) {
+        var n = p.in_range.filter(function (v) { return v; }).length;
+        return [p.name, p.lower, p.upper, p.units || '', p.contiguous ? 'yes' : 'no', n + ' of ' + p.values.length];
+      }), [false, true, true, false, false, true]);
   }
 
   // ------------------------------------------------------------------ main

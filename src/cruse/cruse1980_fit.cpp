@@ -114,7 +114,7 @@ CruseFitProblem::CruseFitProblem(Parameters base, std::vector<fit::FitParameter>
     for (const auto& np : base_.all())
       if (fit::parameter_id_matches(fp.id, np.name)) names.push_back(np.name);
     if (names.empty())
-      throw Error(w + "unknown parameter '" + fp.id + "' of the cruse1980 model (`phasmid cruse CONFIG -o run.h5` lists them under /parameters)");
+      throw Error(w + "unknown parameter '" + fp.id + "' of the cruse1980 model (`phasmid params CONFIG` lists them)");
     for (const auto& n : names) {
       if (n == "start_position" || n == "duration_ms" || n == "retraction_rate" || n == "analysis.cycles")
         throw Error(w + "'" + n + "' is set per run by the fit (period_ms, start_positions, cycles); it cannot be fitted");

@@ -1,6 +1,6 @@
 #pragma once
 // `phasmid fit` for the Cruse (1980) model (docs/cruse1980.md, "Fitting the Fig. 3 switch
-// curves"): named parameters of [cruse1980] (typically the switch nodes switch.<S>.at_<P>ms)
+// curves"): named parameters of a cruse1980 scenario (typically the switch nodes switch.<S>.at_<P>ms)
 // are estimated so that Cruse features, measured at given nominal periods from each of the
 // given Table 2 starting positions, meet [[fit.feature]] targets. The model is piecewise
 // linear with discrete phase decisions, so there is no Jacobian: only derivative-free or
@@ -38,7 +38,7 @@ struct CruseTarget {
 
 struct CruseFitSettings {
   std::vector<int> start_positions = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
-  double cycles = 60;  // each run lasts this many nominal periods (as cruse-sweep)
+  double cycles = 60;  // each run lasts this many nominal periods (as the Table 1 sweep, configs/cruse1980_table1.toml)
 };
 
 // Value of a run feature (see CruseTarget). `first` is the run from the first starting position.
@@ -60,7 +60,7 @@ class CruseFitProblem : public fit::ResidualProblem {
   std::string no_jacobian_reason() const override;
   bool evaluate(const double* x, double* r, double* J, std::string* error = nullptr) const override;
   // /trajectory, /events, /parameters, /features of the run at the fitted values with the
-  // config's own period and starting position, as `phasmid cruse` writes them.
+  // config's own period and starting position, as `phasmid simulate` writes them.
   void write_model_output(io::H5Writer& out, const double* x, bool usable, double output_dt_ms) const override;
 
   Parameters parameters_at(const double* x) const;  // the base parameters with the estimates set

@@ -14,6 +14,7 @@
 #include "common/embedded.hpp"
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
+#include "sweep/ranges.hpp"
 
 namespace phasmid::report {
 namespace {
@@ -410,6 +411,20 @@ void extract_fit(const H5Reader& r, json& out, std::size_t max_points) {
 }
 
 // ---------------------------------------------------------------- sweep
+// The range analysis of a one-at-a-time sweep (docs/sweep.md, "Ranges"), read by the sweep code's
+// own reader; each parameter's unit comes from /sweep/parameter_units.
+json extract_ranges(const H5Reader& r, const std::vector<std::string>& names, const json& units) {
+  json params = json::array();
+  for (const sweep::ParameterRange& p : sweep::read_ranges_h5(r)) {
+    const auto at = std::find(names.begin(), names.end(), p.parameter);
+    const std::size_t k = static_cast<std::size_t>(at - names.begin());
+    params.push_back({{"name", p.parameter}, {"units", k < units.size() ? units[k] : json("")},
+                      {"values", nums(p.values)}, {"in_range", p.in_range}, {"lower", num(p.lower)},
+                      {"upper", num(p.upper)}, {"contiguous", p.contiguous}});
+  }
+  return {{"feature", r.read_string_attribute("/sweep/ranges", "feature")}, {"parameters", params}};
+}
+
 void extract_sweep(const H5Reader& r, json& out) {
   json s = json::object();
   auto names = strings_or_empty(r, "/sweep/parameter_names");
@@ -451,36 +466,22 @@ void extract_sweep(const H5Reader& r, json& out) {
     if (v.size() == n_points) s["options"].push_back({{"name", name}, {"values", v}});
     else note_ignored(out, "/sweep/options/" + name + " (not one per point)");
   }
-  // Other layouts: a group with a `values` dataset is a 1-D axis (e.g. the Cruse-model stability
-  // sweep: /sweep/<parameter>/{values, stable, stable_min, ...}); its same-length datasets are
-  // drawn against it, its scalars tabulated. Other numeric vectors are tabulated.
-  s["axes"] = json::array();
-  s["extra"] = json::array();
+  try {
+    s["design"] = r.read_string_attribute("/sweep", "design");
+  } catch (const Error&) {
+    s["design"] = "";
+  }
+  if (r.exists("/sweep/ranges")) {
+    try {
+      s["ranges"] = extract_ranges(r, names, s["parameter_units"]);
+    } catch (const Error& e) {
+      note_ignored(out, std::string("/sweep/ranges (unreadable: ") + e.what() + ")");
+    }
+  }
   for (const auto& c : r.children("/sweep")) {
     static const std::set<std::string> known = {"parameter_names", "parameter_units", "points", "features",
-                                                "gait_class", "status", "option_names", "options"};
-    if (known.count(c)) continue;
-    const std::string g = "/sweep/" + c;
-    if (r.is_group(g) && is_numeric_dataset(r, g + "/values")) {
-      const auto x = r.read_doubles(g + "/values");
-      json ax = {{"name", c}, {"units", units_of(r, g + "/values")}, {"x", nums(x)},
-                 {"series", json::array()}, {"scalars", json::array()}};
-      for (const auto& d : r.children(g)) {
-        const std::string p = g + "/" + d;
-        if (d == "values") continue;
-        if (is_numeric_dataset(r, p) && count(r.dims(p)) == x.size() && x.size() > 1)
-          ax["series"].push_back({{"name", d}, {"units", units_of(r, p)}, {"values", nums(r.read_doubles(p))}});
-        else if (is_numeric_dataset(r, p) && count(r.dims(p)) == 1)
-          ax["scalars"].push_back({{"name", d}, {"units", units_of(r, p)}, {"value", num(r.read_doubles(p)[0])}});
-        else
-          note_ignored(out, p);
-      }
-      s["axes"].push_back(ax);
-    } else if (is_numeric_dataset(r, g) && count(r.dims(g)) <= 1000) {
-      s["extra"].push_back({{"name", c}, {"units", units_of(r, g)}, {"values", nums(r.read_doubles(g))}});
-    } else {
-      note_ignored(out, g);
-    }
+                                                "gait_class", "status", "option_names", "options", "ranges"};
+    if (!known.count(c)) note_ignored(out, "/sweep/" + c);
   }
   out["sweep"] = s;
 }

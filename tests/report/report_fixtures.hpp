@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/h5_file.hpp"
+#include "sweep/ranges.hpp"
 
 namespace phasmid::testing {
 
@@ -107,24 +108,35 @@ inline void write_cruse_fixture(const std::string& path) {
   w.commit();
 }
 
-// Cruse (1980) Table 1 style stability sweep: /sweep/<parameter>/{values, stable, stable_min, ...}.
-inline void write_cruse_sweep_fixture(const std::string& path) {
+// A one-at-a-time sweep with its range analysis, as `phasmid sweep` writes it for
+// configs/cruse1980_table1.toml: two parameters each over its own axis, /sweep/ranges from the
+// sweep code's own functions. T1 is in range at 4..7 (contiguous), T2 at 1..2 and 4 (a gap).
+inline void write_range_sweep_fixture(const std::string& path) {
   io::H5Writer w(path);
-  w.write_run_info(fixture_info("cruse-sweep"));
-  w.write("/sweep/periods_ms", std::vector<double>{400, 500, 700, 1000}, "ms");
-  for (const char* p : {"OL2", "T1", "T2"}) {
-    std::vector<double> v, stable;
-    for (int i = 0; i <= 20; ++i) {
-      v.push_back(0.5 * i);
-      stable.push_back(i >= 4 && i <= 14 ? 1 : 0);
+  w.write_run_info(fixture_info("range sweep"));
+  sweep::SweepSpec spec;
+  spec.design = sweep::Design::OneAtATime;
+  spec.parameters = {{"T1", "unit", {2, 3, 4, 5, 6, 7, 8}, 0, 0, false, 7.0, 0},
+                     {"T2", "unit", {0, 1, 2, 3, 4, 5}, 0, 0, false, 5.5, 1}};
+  std::vector<double> points, stable, period;
+  for (std::size_t d = 0; d < 2; ++d)
+    for (double v : spec.parameters[d].values) {
+      points.push_back(d == 0 ? v : 7.0);
+      points.push_back(d == 1 ? v : 5.5);
+      const bool in = d == 0 ? (v >= 4 && v <= 7) : (v == 1 || v == 2 || v == 4);
+      stable.push_back(in ? 1 : 0);
+      period.push_back(1000 + 10 * v);
     }
-    const std::string g = std::string("/sweep/") + p;
-    w.write(g + "/values", v, "unit");
-    w.write(g + "/stable", stable, "1");
-    w.write_scalar(g + "/stable_min", 2.0, "unit");
-    w.write_scalar(g + "/stable_max", 7.0, "unit");
-    w.write_scalar(g + "/contiguous", 1.0, "1");
-  }
+  const auto n = static_cast<hsize_t>(stable.size());
+  w.write("/sweep/parameter_names", std::vector<std::string>{"T1", "T2"});
+  w.write("/sweep/parameter_units", std::vector<std::string>{"unit", "unit"});
+  w.write("/sweep/points", points, "unit", {n, 2});
+  w.write("/sweep/features/table1_stable", stable, "1");
+  w.write("/sweep/features/period_ms", period, "ms");
+  w.write("/sweep/gait_class", std::vector<std::string>(n, "ok"));
+  w.write("/sweep/status", std::vector<std::string>(n, "ok"));
+  w.set_attribute("/sweep", "design", "one_at_a_time");
+  sweep::write_ranges_h5(w, "table1_stable", sweep::one_at_a_time_ranges(spec, stable));
   w.commit();
 }
 

@@ -315,12 +315,34 @@ TEST(ReportRender, Cruse) {
   expect_renders("cruse", h5, {"fig-position", "fig-protraction", "table-features", "list-ignored"});
 }
 
-TEST(ReportRender, CruseStabilitySweep) {
-  fs::path h5 = work_dir() / "cruse_sweep.h5";
-  phasmid::testing::write_cruse_sweep_fixture(h5.string());
-  expect_renders("cruse_sweep", h5,
-                 {"fig-sweep-axis-OL2", "fig-sweep-axis-T1", "fig-sweep-axis-T2", "table-sweep-axes",
-                  "table-sweep-extra"});
+TEST(ReportUnits, ExtractSweepRanges) {
+  fs::path h5 = work_dir() / "unit_range_sweep.h5";
+  phasmid::testing::write_range_sweep_fixture(h5.string());
+  auto j = extract(h5.string());
+  const auto& s = j["sweep"];
+  EXPECT_EQ(s["design"], "one_at_a_time");
+  ASSERT_TRUE(s.contains("ranges"));
+  EXPECT_EQ(s["ranges"]["feature"], "table1_stable");
+  const auto& p = s["ranges"]["parameters"];
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_EQ(p[0]["name"], "T1");
+  EXPECT_EQ(p[0]["units"], "unit");
+  EXPECT_EQ(p[0]["lower"], 4.0);
+  EXPECT_EQ(p[0]["upper"], 7.0);
+  EXPECT_TRUE(p[0]["contiguous"].get<bool>());
+  EXPECT_EQ(p[0]["in_range"], nlohmann::json({0, 0, 1, 1, 1, 1, 0}));
+  EXPECT_EQ(p[1]["lower"], 1.0);
+  EXPECT_EQ(p[1]["upper"], 4.0);
+  EXPECT_FALSE(p[1]["contiguous"].get<bool>());
+  for (auto& g : j["ignored"]) EXPECT_EQ(g.get<std::string>().find("/sweep"), std::string::npos) << g;
+}
+
+TEST(ReportRender, RangeSweep) {
+  fs::path h5 = work_dir() / "range_sweep.h5";
+  phasmid::testing::write_range_sweep_fixture(h5.string());
+  // One panel per parameter and the table; no feature panels over a two-parameter plane.
+  expect_renders("range_sweep", h5, {"fig-range-T1", "fig-range-T2", "table-sweep-ranges", "table-sweep-gaits"},
+                 {"fig-sweep-table1_stable", "fig-sweep-gait"});
 }
 
 TEST(ReportRender, Sensitivity) {
