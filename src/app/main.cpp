@@ -5,6 +5,7 @@
 #include "app/verb.hpp"
 #include "common/error.hpp"
 #include "build_info.hpp"
+#include "dist/session.hpp"
 
 namespace phasmid::app {
 std::vector<Verb>& verbs() {
@@ -15,12 +16,21 @@ static std::string g_command_line;
 const std::string& command_line() { return g_command_line; }
 }  // namespace phasmid::app
 
+namespace {
+// Under mpirun every rank runs the verb; rank 0 reports errors, other ranks name themselves.
+std::string error_prefix() {
+  const int r = phasmid::dist::rank();
+  return r == 0 ? "phasmid: " : "phasmid (rank " + std::to_string(r) + "): ";
+}
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace phasmid::app;
+  phasmid::dist::Session mpi(argc, argv);
   for (int i = 0; i < argc; ++i) g_command_line += (i ? " " : "") + std::string(argv[i]);
 
   CLI::App app{"phasmid: simulation, sensitivities, fits and sweeps of the stick-insect walking model"};
-  app.set_version_flag("--version", PHASMID_VERSION);
+  app.set_version_flag("--version", std::string(PHASMID_VERSION) + " (" + phasmid::dist::mpi_description() + ")");
   app.require_subcommand(1);
   std::function<int()> action;
   for (auto& verb : verbs()) {
@@ -36,10 +46,10 @@ int main(int argc, char** argv) {
   try {
     return action ? action() : 1;
   } catch (const phasmid::Error& e) {
-    std::cerr << "phasmid: error: " << e.what() << "\n";
+    std::cerr << error_prefix() << "error: " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "phasmid: internal error: " << e.what() << "\n";
+    std::cerr << error_prefix() << "internal error: " << e.what() << "\n";
     return 2;
   }
 }

@@ -1,4 +1,4 @@
-// phasmid sweep CONFIG [-o OUT.h5] [--resume] [--set NAME=VALUE ...] [-j THREADS]
+// [mpirun -np N] phasmid sweep CONFIG [-o OUT.h5] [--resume] [--set NAME=VALUE ...] [-j THREADS]
 #include <iostream>
 
 #include "app/verb.hpp"
@@ -28,6 +28,7 @@ int run(const SweepArgs& a) {
   o.handle_signals = true;
   o.command = command_line();
   sweep::SweepOutcome r = sweep::run_sweep(cfg, o);
+  if (r.worker) return 0;  // MPI worker rank: rank 0 reports
   if (!r.complete) {
     std::cerr << "phasmid sweep: " << (r.signal ? "interrupted" : "stopped") << " with "
               << (r.n_recovered + r.n_computed) << " of " << r.n_points << " points done (kept in " << r.journal
@@ -36,8 +37,8 @@ int run(const SweepArgs& a) {
   }
   if (!a.quiet)
     std::cerr << "phasmid sweep: " << r.n_points << " points (" << r.n_failed << " failed, " << r.n_recovered
-              << " resumed) on " << r.threads << " thread" << (r.threads == 1 ? "" : "s") << " in " << r.wall_seconds
-              << " s -> " << r.output << "\n";
+              << " resumed) on " << r.executor << " in " << r.wall_seconds << " s -> " << r.output << "\n";
+  if (!a.quiet && r.distributed) std::cerr << "phasmid sweep: work per rank\n" << dist::format_work_summary(r.work, "points");
   return 0;
 }
 
@@ -48,7 +49,7 @@ const RegisterVerb reg{{"sweep", "Simulate every point of a parameter sweep ([sw
                           sub.add_option("-o,--output", a->out, "output HDF5 file (default sweep.h5)");
                           sub.add_flag("--resume", a->resume, "continue an interrupted sweep from OUT.h5.journal");
                           sub.add_option("--set", a->sets, "override a parameter for every point: NAME=VALUE (repeatable)");
-                          sub.add_option("-j,--threads", a->threads, "worker threads (default: OMP_NUM_THREADS or all cores)")
+                          sub.add_option("-j,--threads", a->threads, "worker threads (default: OMP_NUM_THREADS or all cores; under mpirun per rank, default OMP_NUM_THREADS or 1)")
                               ->check(CLI::NonNegativeNumber);
                           sub.add_option("--stop-after", a->stop_after,
                                          "testing: stop as if interrupted after computing K points")

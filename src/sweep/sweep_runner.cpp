@@ -1,18 +1,14 @@
 #include "sweep/sweep_runner.hpp"
 
-#include <omp.h>
-
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
-#include <exception>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <optional>
 
 #include "common/error.hpp"
+#include "dist/executor.hpp"
 #include "solver/simulator.hpp"
 #include "sweep/progress.hpp"
 
@@ -116,72 +112,71 @@ SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& opt) {
   out.n_points = spec.n_points;
   out.output = opt.output;
   out.journal = Journal::path_for(opt.output);
-  if (!opt.resume && std::filesystem::exists(out.journal))
-    throw Error(out.journal + ": journal of an unfinished sweep; pass --resume to continue it, or delete it to start over");
-  Journal journal(out.journal, sweep_fingerprint(resolved, spec), spec.n_points, opt.resume);
-
-  std::vector<std::optional<PointResult>> results(spec.n_points);
-  for (auto& [i, r] : journal.recovered()) results[i] = r;
-  out.n_recovered = journal.recovered().size();
-  std::vector<std::size_t> pending;
-  for (std::size_t i = 0; i < spec.n_points; ++i)
-    if (!results[i]) pending.push_back(i);
-    else if (results[i]->status != "ok") ++out.n_failed;
-
-  const int nthreads = std::max(1, opt.threads > 0 ? opt.threads : omp_get_max_threads());
-  out.threads = nthreads;
-  // One model per thread and option combination, built serially: threads share nothing but
-  // read-only inputs.
-  std::vector<std::vector<std::unique_ptr<model::OdeModel>>> models(nthreads);
-  for (auto& per_thread : models)
-    for (std::size_t c = 0; c < spec.n_combos; ++c) per_thread.push_back(config::build_model(combo_cfg[c], opt.sets));
+  std::unique_ptr<dist::Executor> exec = dist::make_executor(opt.threads);
+  out.threads = exec->slots();
+  out.executor = exec->describe();
+  out.distributed = exec->distributed();
+  // One model per evaluation slot and option combination, built serially: slots share nothing
+  // but read-only inputs.
+  std::vector<std::vector<std::unique_ptr<model::OdeModel>>> models(exec->slots());
+  for (auto& per_slot : models)
+    for (std::size_t c = 0; c < spec.n_combos; ++c) per_slot.push_back(config::build_model(combo_cfg[c], opt.sets));
   solver::SolverOptions so = sim.solver;
   so.progress = false;
+  // A point's result travels as its journal line (hex floats are exact; strings are normalised
+  // to valid UTF-8), so the master stores exactly what a resumed sweep reads back.
+  const dist::Evaluate evaluate = [&](const dist::Task& t, int slot) {
+    const std::size_t c = spec.combo_of(t.id);
+    return encode_record(t.id, evaluate_point(*models[slot][c], combo_p[c], combo_swept[c], spec, t.id, so));
+  };
+  if (!exec->is_master()) {  // an MPI worker: evaluate what rank 0 hands out, write nothing
+    exec->run({}, evaluate, {}, {});
+    out.worker = true;
+    return out;
+  }
+
+  std::optional<Journal> journal;
+  try {
+    if (!opt.resume && std::filesystem::exists(out.journal))
+      throw Error(out.journal + ": journal of an unfinished sweep; pass --resume to continue it, or delete it to start over");
+    journal.emplace(out.journal, sweep_fingerprint(resolved, spec), spec.n_points, opt.resume);
+  } catch (...) {
+    dist::release_workers();
+    throw;
+  }
+
+  std::vector<std::optional<PointResult>> results(spec.n_points);
+  for (auto& [i, r] : journal->recovered()) results[i] = r;
+  out.n_recovered = journal->recovered().size();
+  std::vector<dist::Task> pending;
+  for (std::size_t i = 0; i < spec.n_points; ++i)
+    if (!results[i]) pending.push_back({i, {}});
+    else if (results[i]->status != "ok") ++out.n_failed;
 
   SignalGuard signals(opt.handle_signals);
   ProgressBar bar(spec.n_points, out.n_recovered, opt.progress);
-  std::mutex mu;
-  std::atomic<bool> stop{false};
-  std::atomic<long> started{0};
-  std::exception_ptr fatal;
+  long started = 0;
   std::size_t done = out.n_recovered;
   bar.update(done, out.n_failed, true);
-
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads)
-  for (long k = 0; k < static_cast<long>(pending.size()); ++k) {
-    if (stop.load() || g_stop_signal) continue;
-    if (opt.stop_after >= 0 && started.fetch_add(1) >= opt.stop_after) {
-      stop = true;
-      continue;
-    }
-    const std::size_t i = pending[k];
-    try {
-      const std::size_t c = spec.combo_of(i);
-      PointResult r = evaluate_point(*models[omp_get_thread_num()][c], combo_p[c], combo_swept[c], spec, i, so);
-      // Keep exactly what the journal holds (hex floats are exact; strings are normalised to
-      // valid UTF-8), so a resumed sweep assembles the very same values.
-      const std::string line = encode_record(i, r);
-      std::size_t back_index = 0;
-      if (!decode_record(line, back_index, r) || back_index != i) throw Error("internal: journal record does not round-trip");
-      journal.append_line(line);
-      std::lock_guard<std::mutex> lock(mu);
-      if (r.status != "ok") ++out.n_failed;
-      results[i] = std::move(r);
-      ++out.n_computed;
-      ++done;
-      bar.update(done, out.n_failed);
-    } catch (...) {  // journal I/O failure: stop everything, report after the loop
-      std::lock_guard<std::mutex> lock(mu);
-      if (!fatal) fatal = std::current_exception();
-      stop = true;
-    }
-  }
+  const dist::KeepGoing keep_going = [&] {
+    return !g_stop_signal && !(opt.stop_after >= 0 && started++ >= opt.stop_after);
+  };
+  const dist::Collect collect = [&](std::size_t i, std::string line) {
+    PointResult r;
+    std::size_t back_index = 0;
+    if (!decode_record(line, back_index, r) || back_index != i) throw Error("internal: journal record does not round-trip");
+    journal->append_line(line);
+    if (r.status != "ok") ++out.n_failed;
+    results[i] = std::move(r);
+    ++out.n_computed;
+    bar.update(++done, out.n_failed);
+  };
+  out.work = exec->run(pending, evaluate, collect, keep_going);
   bar.finish(done, out.n_failed);
-  if (fatal) std::rethrow_exception(fatal);
   out.signal = g_stop_signal;
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (done < spec.n_points) {
-    journal.sync();
+    journal->sync();
     return out;
   }
 
@@ -189,7 +184,7 @@ SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& opt) {
   all.reserve(spec.n_points);
   for (auto& r : results) all.push_back(std::move(*r));
   write_sweep_h5(opt.output, spec, all, *base_model, base_p, {resolved, opt.command});
-  journal.close_and_remove();
+  journal->close_and_remove();
   out.complete = true;
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return out;
