@@ -1,5 +1,5 @@
 // phasmid fit CONFIG [--data KIN.csv] [--parameters PARAMS.tsv] [--optimizer ceres|nlopt:NAME]
-//                    [--multistart N] [-o OUT.h5]   (docs/fit.md)
+//                    [--multistart N] [-o OUT.h5]   (docs/fit.md; under mpirun: docs/cluster.md)
 // Exit status: 0 converged, 3 finished without convergence (result written, summary says why),
 // 1 bad input (one line on stderr).
 #include <iostream>
@@ -9,6 +9,8 @@
 #include "config/config.hpp"
 #include "cruse/cruse1980_fit.hpp"
 #include "cruse/cruse1980_output.hpp"
+#include "dist/executor.hpp"
+#include "dist/session.hpp"
 #include "fit/fit_config.hpp"
 #include "fit/fit_run.hpp"
 #include "io/h5_file.hpp"
@@ -28,6 +30,10 @@ int fit_and_report(const FitArgs& a, const fit::ResidualProblem& problem, fit::F
   spec.optimizer.progress = !a.quiet;
   if (!a.profile.empty()) spec.profile = a.profile;
   const std::string out = a.out.empty() ? "fit.h5" : a.out;
+  if (dist::rank() != 0) {  // an MPI worker: evaluates starts and profiles for rank 0
+    fit::run_fit(problem, spec);
+    return 0;
+  }
   io::H5Writer w(out);  // opened before the work so an unwritable path fails early
   fit::FitResult result = fit::run_fit(problem, spec);
   w.write_run_info({resolved_config, command_line()});
@@ -36,6 +42,8 @@ int fit_and_report(const FitArgs& a, const fit::ResidualProblem& problem, fit::F
   w.commit();
   const fit::FitSummary& b = result.best();
   if (!a.quiet) std::cerr << fit::format_result(problem, result) << "phasmid fit: -> " << out << "\n";
+  if (!a.quiet && dist::size() > 1)
+    std::cerr << "phasmid fit: starts per rank\n" << dist::format_work_summary(result.multistart.work, "starts");
   if (!b.converged) {
     std::cerr << "phasmid fit: " << (b.usable ? "did not converge" : "failed") << " (" << b.termination
               << (b.message.empty() ? "" : ": " + b.message) << "); results in " << out << "\n";
