@@ -11,6 +11,7 @@
 #include "dist/executor.hpp"
 #include "solver/simulator.hpp"
 #include "sweep/progress.hpp"
+#include "sweep/sweep_shard.hpp"
 
 namespace phasmid::sweep {
 namespace {
@@ -44,6 +45,99 @@ struct SignalGuard {
     sigaction(SIGTERM, &old_term, nullptr);
   }
 };
+
+
+// What rank 0 (or the only process) needs to run the point loop and write the result.
+struct MasterJob {
+  const config::Config& cfg;
+  const SweepOptions& opt;
+  const SweepSpec& spec;
+  const std::string& resolved;
+  const model::OdeModel& base_model;
+  const std::vector<double>& base_p;
+  std::chrono::steady_clock::time_point wall0;
+};
+
+// Opens (or resumes) the journal; on an MPI master, a refusal also ends the workers' wait.
+std::unique_ptr<Journal> open_journal(const MasterJob& job, const std::string& path) {
+  try {
+    if (!job.opt.resume && std::filesystem::exists(path))
+      throw Error(path + ": journal of an unfinished sweep; pass --resume to continue it, or delete it to start over");
+    std::uint64_t fingerprint = sweep_fingerprint(job.resolved, job.spec);
+    if (job.opt.shard.active()) fingerprint = shard_fingerprint(fingerprint, job.opt.shard);
+    return std::make_unique<Journal>(path, fingerprint, job.spec.n_points, job.opt.resume);
+  } catch (...) {
+    dist::release_workers();
+    throw;
+  }
+}
+
+// The sweep file, or with --shard the shard file (its points' journal lines, for `merge`).
+void write_result(const MasterJob& job, std::vector<std::optional<PointResult>>& results) {
+  const io::RunInfo info{job.resolved, job.opt.command};
+  if (job.opt.shard.active()) {
+    std::vector<std::string> records;
+    for (std::size_t i = 0; i < results.size(); ++i)
+      if (results[i]) records.push_back(encode_record(i, *results[i]));
+    write_shard_h5(job.opt.output, job.cfg, job.opt.sets, job.spec, job.opt.shard, records, info);
+    return;
+  }
+  std::vector<PointResult> all;
+  all.reserve(results.size());
+  for (auto& r : results) all.push_back(std::move(*r));
+  write_sweep_h5(job.opt.output, job.spec, all, job.base_model, job.base_p, info);
+}
+
+// The point loop on the master: hands the missing points (of its shard) to the executor,
+// journals and stores each result as it arrives, shows progress; writes the file when done.
+SweepOutcome run_master(const MasterJob& job, dist::Executor& exec, const dist::Evaluate& evaluate, SweepOutcome out) {
+  const SweepOptions& opt = job.opt;
+  const SweepSpec& spec = job.spec;
+  std::unique_ptr<Journal> journal = open_journal(job, out.journal);
+  std::vector<std::optional<PointResult>> results(spec.n_points);
+  for (auto& [i, r] : journal->recovered()) results[i] = r;
+  out.n_recovered = journal->recovered().size();
+  out.n_points = 0;
+  std::vector<dist::Task> pending;
+  for (std::size_t i = 0; i < spec.n_points; ++i) {
+    if (!opt.shard.owns(i)) continue;
+    ++out.n_points;
+    if (!results[i]) pending.push_back({i, {}});
+    else if (results[i]->status != "ok") ++out.n_failed;
+  }
+
+  SignalGuard signals(opt.handle_signals);
+  ProgressBar bar(out.n_points, out.n_recovered, opt.progress);
+  long started = 0;
+  std::size_t done = out.n_recovered;
+  bar.update(done, out.n_failed, true);
+  const dist::KeepGoing keep_going = [&] {
+    return !g_stop_signal && !(opt.stop_after >= 0 && started++ >= opt.stop_after);
+  };
+  const dist::Collect collect = [&](std::size_t i, std::string line) {
+    PointResult r;
+    std::size_t back_index = 0;
+    if (!decode_record(line, back_index, r) || back_index != i) throw Error("internal: journal record does not round-trip");
+    journal->append_line(line);
+    if (r.status != "ok") ++out.n_failed;
+    results[i] = std::move(r);
+    ++out.n_computed;
+    bar.update(++done, out.n_failed);
+  };
+  out.work = exec.run(pending, evaluate, collect, keep_going);
+  bar.finish(done, out.n_failed);
+  out.signal = g_stop_signal;
+  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - job.wall0).count();
+  if (done < out.n_points) {
+    journal->sync();
+    return out;
+  }
+  write_result(job, results);
+  journal->close_and_remove();
+  out.complete = true;
+  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - job.wall0).count();
+  return out;
+}
 
 }  // namespace
 
@@ -135,59 +229,7 @@ SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& opt) {
     return out;
   }
 
-  std::optional<Journal> journal;
-  try {
-    if (!opt.resume && std::filesystem::exists(out.journal))
-      throw Error(out.journal + ": journal of an unfinished sweep; pass --resume to continue it, or delete it to start over");
-    journal.emplace(out.journal, sweep_fingerprint(resolved, spec), spec.n_points, opt.resume);
-  } catch (...) {
-    dist::release_workers();
-    throw;
-  }
-
-  std::vector<std::optional<PointResult>> results(spec.n_points);
-  for (auto& [i, r] : journal->recovered()) results[i] = r;
-  out.n_recovered = journal->recovered().size();
-  std::vector<dist::Task> pending;
-  for (std::size_t i = 0; i < spec.n_points; ++i)
-    if (!results[i]) pending.push_back({i, {}});
-    else if (results[i]->status != "ok") ++out.n_failed;
-
-  SignalGuard signals(opt.handle_signals);
-  ProgressBar bar(spec.n_points, out.n_recovered, opt.progress);
-  long started = 0;
-  std::size_t done = out.n_recovered;
-  bar.update(done, out.n_failed, true);
-  const dist::KeepGoing keep_going = [&] {
-    return !g_stop_signal && !(opt.stop_after >= 0 && started++ >= opt.stop_after);
-  };
-  const dist::Collect collect = [&](std::size_t i, std::string line) {
-    PointResult r;
-    std::size_t back_index = 0;
-    if (!decode_record(line, back_index, r) || back_index != i) throw Error("internal: journal record does not round-trip");
-    journal->append_line(line);
-    if (r.status != "ok") ++out.n_failed;
-    results[i] = std::move(r);
-    ++out.n_computed;
-    bar.update(++done, out.n_failed);
-  };
-  out.work = exec->run(pending, evaluate, collect, keep_going);
-  bar.finish(done, out.n_failed);
-  out.signal = g_stop_signal;
-  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  if (done < spec.n_points) {
-    journal->sync();
-    return out;
-  }
-
-  std::vector<PointResult> all;
-  all.reserve(spec.n_points);
-  for (auto& r : results) all.push_back(std::move(*r));
-  write_sweep_h5(opt.output, spec, all, *base_model, base_p, {resolved, opt.command});
-  journal->close_and_remove();
-  out.complete = true;
-  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  return out;
+  return run_master({cfg, opt, spec, resolved, *base_model, base_p, wall0}, *exec, evaluate, std::move(out));
 }
 
 }  // namespace phasmid::sweep

@@ -10,6 +10,7 @@
 
 #include "config/config.hpp"
 #include "dist/executor.hpp"
+#include "sweep/sweep_shard.hpp"
 #include "sweep/sweep_store.hpp"
 
 namespace phasmid::sweep {
@@ -20,6 +21,7 @@ struct SweepOptions {
   bool resume = false;            // continue from "<output>.journal"
   int threads = 0;                // 0: OpenMP's default (OMP_NUM_THREADS or the number of cores);
                                   // under MPI per worker rank, default OMP_NUM_THREADS or 1
+  Shard shard;                    // --shard i/N: only every N-th point, written as a shard file
   long stop_after = -1;           // testing: stop (as if interrupted) after this many new points
   bool progress = true;           // progress bar on a terminal
   bool handle_signals = false;    // SIGINT/SIGTERM finish the running points, then stop resumably
@@ -27,7 +29,7 @@ struct SweepOptions {
 };
 
 struct SweepOutcome {
-  std::size_t n_points = 0;
+  std::size_t n_points = 0;     // of the sweep, or of the shard
   std::size_t n_recovered = 0;  // taken from the journal (--resume)
   std::size_t n_computed = 0;   // computed in this run
   std::size_t n_failed = 0;     // of all points finished so far
