@@ -47,7 +47,8 @@ class OpenMPExecutor final : public Executor {
       const auto t0 = std::chrono::steady_clock::now();
       try {
         std::string result = evaluate(tasks[k], t);
-        stats[t].busy_seconds += seconds_since(t0);
+        stats[t].task_seconds.push_back(seconds_since(t0));
+        stats[t].busy_seconds += stats[t].task_seconds.back();
         ++stats[t].tasks;
         std::lock_guard<std::mutex> lock(mu);
         if (!fatal) collect(tasks[k].id, std::move(result));

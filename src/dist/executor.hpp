@@ -37,6 +37,7 @@ struct WorkerStats {
   std::string who;  // "rank 3" or "thread 1"
   std::size_t tasks = 0;
   double busy_seconds = 0;  // time spent evaluating
+  std::vector<double> task_seconds;  // each task's evaluation time, in order of completion
 };
 
 class Executor {

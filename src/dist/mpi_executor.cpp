@@ -125,6 +125,7 @@ std::vector<WorkerStats> MpiExecutor::master(const std::vector<Task>& tasks, con
       WorkerStats& s = stats[source - 1];
       ++s.tasks;
       s.busy_seconds += seconds;
+      s.task_seconds.push_back(seconds);
       try {
         if (!ok) throw Error("rank " + std::to_string(source) + ": task " + std::to_string(id) + ": " + result);
         if (!fatal) collect(id, std::move(result));
