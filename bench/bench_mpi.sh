@@ -14,7 +14,7 @@ CFG="$SRC/bench/sweep_three_legs_16.toml"
 export OMP_NUM_THREADS=1
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 wall() { local t0 t1; t0=$(date +%s.%N); "$@" >/dev/null 2>&1; t1=$(date +%s.%N); echo "$t1 - $t0" | bc -l; }
-echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores"
+echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg) on $(getconf _NPROCESSORS_ONLN) cores"
 t1=$(wall "$PHASMID" sweep "$CFG" -o "$tmp/one.h5" -j 1 -q)
 tm=$(wall mpirun --oversubscribe -np 3 "$PHASMID" sweep "$CFG" -o "$tmp/mpi.h5" -q)
 to=$(wall "$PHASMID" sweep "$CFG" -o "$tmp/omp.h5" -j 2 -q)
