@@ -5,12 +5,7 @@
 # finished point and --resume completes the same file; a mismatched resume is refused.
 set -u
 PHASMID="$1"; SRC="$2"
-source "$SRC/tests/dist/mpi_env.sh"
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-cd "$tmp"
-fail=0; pass=0
-ok() { pass=$((pass+1)); }
-bad() { echo "FAIL: $*"; fail=$((fail+1)); }
+source "$SRC/tests/dist/mpi_env.sh"   # skips without MPI; runs in a fresh temporary directory
 same() {  # description, file a, file b: every dataset and group attribute under /sweep and /parameters
   if h5diff -q "$2" "$3" /sweep /sweep && h5diff -q "$2" "$3" /parameters /parameters; then ok; else bad "$1: $2 and $3 differ"; fi
 }
