@@ -2,7 +2,8 @@
 # phasmid sweep under mpirun (3 ranks: a master and two workers, oversubscribed on small
 # machines): the same HDF5 datasets, bit for bit, as the single-process run; a journal written
 # under MPI resumes without it and the other way round; a worker killed with SIGKILL loses no
-# finished point and --resume completes the same file; a mismatched resume is refused.
+# finished point and --resume completes the same file; a mismatched resume is refused; verbs
+# without MPI support refuse several ranks.
 set -u
 PHASMID="$1"; SRC="$2"
 source "$SRC/tests/dist/mpi_env.sh"   # skips without MPI; runs in a fresh temporary directory
@@ -27,6 +28,11 @@ mpirun_np3 "$PHASMID" sweep "$cfg" -o b.h5 -q --resume && same "journal resumed 
 mpirun_np3 "$PHASMID" sweep "$cfg" -o c.h5 -q --resume --set middle.fti.b_v=13 >out 2>err; rc=$?
 [ $rc -ne 0 ] && [ "$(grep -c "belongs to a different sweep" err)" -eq 1 ] && [ ! -e c.h5 ] && ok \
   || bad "mismatched resume under MPI (rc=$rc: $(cat err))"
+
+# verbs that write one file from one process refuse several ranks (rank 0 says so, once)
+mpirun_np3 "$PHASMID" simulate "$SRC/configs/fti_mechanical.toml" -o sim.h5 -q >out 2>err; rc=$?
+[ $rc -ne 0 ] && [ "$(grep -c "runs in one process" err)" -eq 1 ] && [ ! -e sim.h5 ] && ok \
+  || bad "simulate under mpirun (rc=$rc: $(cat err))"
 
 # kill -9 one worker rank mid-way; Open MPI then ends the job; the journal keeps every point
 sed 's/t_end_ms = 3000/t_end_ms = 150000/; s/points = 5/points = 3/' "$cfg" >slow.toml   # 12 points
