@@ -5,6 +5,7 @@
 #include "app/verb.hpp"
 #include "common/error.hpp"
 #include "build_info.hpp"
+#include "dist/executor.hpp"
 #include "dist/session.hpp"
 
 namespace phasmid::app {
@@ -21,6 +22,13 @@ namespace {
 std::string error_prefix() {
   const int r = phasmid::dist::rank();
   return r == 0 ? "phasmid: " : "phasmid (rank " + std::to_string(r) + "): ";
+}
+
+// A rank that fails while others may wait for it ends the whole MPI job.
+int failed(int code) {
+  std::cerr.flush();
+  if (phasmid::dist::size() > 1 && !phasmid::dist::workers_released()) phasmid::dist::abort_job(code);
+  return code;
 }
 }  // namespace
 
@@ -54,9 +62,9 @@ int main(int argc, char** argv) {
     return action ? action() : 1;
   } catch (const phasmid::Error& e) {
     std::cerr << error_prefix() << "error: " << e.what() << "\n";
-    return 1;
+    return failed(1);
   } catch (const std::exception& e) {
     std::cerr << error_prefix() << "internal error: " << e.what() << "\n";
-    return 2;
+    return failed(2);
   }
 }

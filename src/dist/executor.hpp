@@ -62,6 +62,9 @@ std::string format_work_summary(const std::vector<WorkerStats>& stats, const std
 // On the MPI master after an error outside run(): tells every worker that the current phase is
 // over, so that the job ends instead of waiting. Nothing without MPI or on workers.
 void release_workers();
+// Whether release_workers() was called: main() ends a failed job with abort_job() otherwise,
+// since other ranks may be waiting for this one.
+bool workers_released();
 
 // Implementations (executor.cpp, mpi_executor.cpp).
 std::unique_ptr<Executor> make_openmp_executor(int threads);

@@ -215,10 +215,17 @@ void MpiExecutor::worker(const Evaluate& evaluate) const {
 
 std::unique_ptr<Executor> make_mpi_executor(int threads) { return std::make_unique<MpiExecutor>(threads); }
 
+namespace {
+bool g_released = false;
+}
+
 void release_workers() {
   if (rank() != 0) return;
   for (int w = 1; w < size(); ++w) send(w, kStop, {});
+  g_released = true;
 }
+
+bool workers_released() { return g_released; }
 
 }  // namespace phasmid::dist
 
@@ -227,6 +234,7 @@ void release_workers() {
 namespace phasmid::dist {
 std::unique_ptr<Executor> make_mpi_executor(int) { throw Error("internal: MPI executor requested but MPI is not compiled in"); }
 void release_workers() {}
+bool workers_released() { return false; }
 }  // namespace phasmid::dist
 
 #endif

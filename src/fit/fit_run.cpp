@@ -82,8 +82,8 @@ FitResult run_fit(const ResidualProblem& problem, const FitSpec& spec) {
   std::vector<dist::Task> tasks;
   std::vector<std::vector<double>> grids;
   const FitSummary& b = res.best();
-  res.estimate = problem.to_linear(b.x);
   try {
+    res.estimate = problem.to_linear(b.x);
     if (b.usable) {
       res.uncertainty = estimate_uncertainty(problem, b.x, spec.absolute_sigma);
       for (size_t j : prof)
