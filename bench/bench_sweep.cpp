@@ -13,7 +13,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "config/config.hpp"
+#include "config/sweep_inputs.hpp"
 #include "io/h5_file.hpp"
 #include "sweep/sweep_runner.hpp"
 
@@ -71,7 +71,7 @@ upper = 15
     o.threads = threads;
     o.progress = false;
     const double cpu0 = cpu_now();
-    sweep::SweepOutcome r = sweep::run_sweep(cfg, o);
+    sweep::SweepOutcome r = sweep::run_sweep(config::sweep_inputs(cfg, {}), o);
     const double cpu = cpu_now() - cpu0;
     if (threads == 1) base = r.wall_seconds;
     std::printf("%8d %10.2f %12.2f %9.2fx %14.3f %11.2f\n", threads, r.wall_seconds, r.n_points / r.wall_seconds,

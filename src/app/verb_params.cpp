@@ -1,9 +1,10 @@
-// phasmid params CONFIG [--json] [--set ...]: every named parameter with value, unit, source.
-#include <nlohmann/json.hpp>
+// phasmid params CONFIG [--set ...] [--json]: every named parameter with value, unit, source.
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
 
+#include "app/options.hpp"
 #include "app/verb.hpp"
 #include "config/config.hpp"
 
@@ -17,28 +18,27 @@ struct ParamsArgs {
 
 int run_params(const ParamsArgs& a) {
   auto cfg = config::load_config(a.config);
-  auto m = config::build_model(cfg, a.sets);
-  // Command times set during the run by [[triggers]]: their value here is only "never".
-  std::map<std::string, std::string> triggered;
-  for (const auto& tr : m->triggers())
-    for (size_t k : tr.targets) triggered[m->parameters().at(k).name] = tr.event;
+  auto scenario = config::build_scenario(cfg, a.sets);
+  // Values set during the run (e.g. by [[triggers]]): their value here means nothing.
+  std::map<std::string, std::string> set_by;
+  for (const auto& [name, by] : scenario->run_time_parameters()) set_by[name] = by;
   if (a.json) {
     nlohmann::json out = nlohmann::json::array();
-    for (auto& p : m->parameters().all()) {
+    for (auto& p : scenario->parameters().all()) {
       nlohmann::json e = {{"name", p.name}, {"value", p.value}, {"unit", p.unit}, {"source", p.source},
                           {"description", p.description}};
-      if (triggered.count(p.name)) e["triggered_by"] = triggered[p.name];
+      if (set_by.count(p.name)) e["set_during_run_by"] = set_by[p.name];
       out.push_back(e);
     }
     std::cout << out.dump(2) << "\n";
     return 0;
   }
-  for (auto& p : m->parameters().all()) {
+  for (auto& p : scenario->parameters().all()) {
     std::cout << std::left << std::setw(40) << p.name << std::right << std::setw(12);
-    if (triggered.count(p.name)) std::cout << "triggered";
+    if (set_by.count(p.name)) std::cout << "at run time";
     else std::cout << p.value;
     std::cout << "  " << std::left << std::setw(10) << p.unit << "  " << p.source;
-    if (triggered.count(p.name)) std::cout << "; set during the run by [[triggers]] event " << triggered[p.name];
+    if (set_by.count(p.name)) std::cout << "; set during the run by " << set_by[p.name];
     std::cout << "\n";
   }
   return 0;
@@ -47,9 +47,9 @@ int run_params(const ParamsArgs& a) {
 const RegisterVerb reg{{"params", "List every named parameter of a scenario: value, unit, source",
                         [](CLI::App& sub) {
                           auto a = std::make_shared<ParamsArgs>();
-                          sub.add_option("config", a->config, "scenario config (TOML)")->required();
-                          sub.add_option("--set", a->sets, "override a parameter: NAME=VALUE");
-                          sub.add_flag("--json", a->json, "JSON output");
+                          add_config_arg(sub, a->config);
+                          add_sets(sub, a->sets);
+                          add_json(sub, a->json);
                           return std::function<int()>([a] { return run_params(*a); });
                         }}};
 }  // namespace

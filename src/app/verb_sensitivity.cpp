@@ -1,51 +1,52 @@
-// phasmid sensitivity CONFIG [-o OUT.h5] [--method forward|fd] [--set NAME=VALUE ...]
+// phasmid sensitivity CONFIG [-o OUT.h5] [--method forward|fd] [--set NAME=VALUE ...] [-q] [--json]
 #include <iostream>
 
+#include "app/options.hpp"
 #include "app/verb.hpp"
+#include "app/write_output.hpp"
 #include "common/error.hpp"
 #include "config/config.hpp"
+#include "config/sensitivity_section.hpp"
 #include "sensitivity/job.hpp"
 
 namespace phasmid::app {
 namespace {
 struct SensitivityArgs {
-  std::string config, out, method;
+  std::string config, out = "sensitivity.h5", method;
   std::vector<std::string> sets;
+  bool quiet = false, json = false;
 };
 
 int run_sensitivity(const SensitivityArgs& a) {
   config::Config cfg = config::load_config(a.config);
-  auto model = config::build_model(cfg, a.sets);
-  const toml::table* section = cfg.table["sensitivity"].as_table();
-  if (!section) throw Error(cfg.path + ": no [sensitivity] section (it lists the parameters to differentiate by)");
-  // Defaults from [simulation], overridden by [sensitivity].
-  config::SimulationSettings sim = config::simulation_settings(cfg);
-  sensitivity::SensitivityJob defaults;
-  defaults.options.t_end_ms = sim.t_end_ms;
-  defaults.options.output_dt_ms = sim.output_dt_ms;
-  defaults.options.discard_ms = sim.discard_ms;
-  defaults.options.solver = sim.solver;
-  auto job = sensitivity::parse_sensitivity_section(*section, *model, cfg.path, defaults);
+  auto scenario = config::build_scenario(cfg, a.sets);
+  const model::OdeModel* model = scenario->ode_model();
+  if (!model)
+    throw Error(cfg.path + ": model type " + scenario->kind() +
+                " is not an ODE system; forward sensitivities need one (use sweep or fit with a derivative-free optimizer)");
+  sensitivity::SensitivityJob job = config::sensitivity_job(cfg, *model, config::simulation_settings(cfg, scenario.get()));
   if (!a.method.empty()) job.options.method = sensitivity::parse_method(a.method);
-  job.options.solver.progress = true;
+  job.options.solver.progress = !a.quiet;
   job.options.solver.progress_label = "sensitivity";
   std::vector<double> p = model->parameters().values();
   auto outcome = sensitivity::run_sensitivity_job(*model, p, job);
-  std::string out = a.out.empty() ? "sensitivity.h5" : a.out;
-  sensitivity::write_sensitivity_file(out, *model, p, job, outcome,
+  sensitivity::write_sensitivity_file(a.out, *model, p, job, outcome,
                                       {config::resolved_config_text(cfg, a.sets), command_line()});
-  std::cout << sensitivity::format_summary(outcome);
-  std::cerr << "phasmid sensitivity: wrote " << out << "\n";
+  if (a.json) print_features_json(outcome.report.features);
+  else std::cout << sensitivity::format_summary(outcome);
+  if (!a.quiet) std::cerr << "phasmid sensitivity: wrote " << a.out << "\n";
   return 0;
 }
 
-const RegisterVerb reg{{"sensitivity", "Forward sensitivities of trajectory and gait features (CVODES)",
+const RegisterVerb reg{{"sensitivity", "Forward sensitivities of a scenario's trajectory and gait features (CVODES)",
                         [](CLI::App& sub) {
                           auto a = std::make_shared<SensitivityArgs>();
-                          sub.add_option("config", a->config, "scenario config with a [sensitivity] section")->required();
-                          sub.add_option("-o,--output", a->out, "output HDF5 file (default sensitivity.h5)");
+                          add_config_arg(sub, a->config, "scenario config (TOML) with a [sensitivity] section");
+                          add_output(sub, a->out, "sensitivity.h5");
                           sub.add_option("--method", a->method, "forward (CVODES, default) or fd (central differences)");
-                          sub.add_option("--set", a->sets, "override a parameter: NAME=VALUE");
+                          add_sets(sub, a->sets);
+                          add_quiet(sub, a->quiet);
+                          add_json(sub, a->json);
                           return std::function<int()>([a] { return run_sensitivity(*a); });
                         }}};
 }  // namespace

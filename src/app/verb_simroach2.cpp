@@ -9,6 +9,7 @@
 
 #include "app/verb.hpp"
 #include "common/error.hpp"
+#include "common/units.hpp"
 #include "simroach2/muscle_check.hpp"
 #include "simroach2/passive_joint.hpp"
 
@@ -46,7 +47,7 @@ struct DampingOptions {
 
 int damping_cmd(const DampingOptions& o) {
   using namespace phasmid::simroach2;
-  const double deg = M_PI / 180.0;
+  const double deg = phasmid::units::kRadPerDeg;
   if (!(o.theta_max_deg > o.theta_min_deg)) throw phasmid::Error("--theta-max must exceed --theta-min");
   const auto d = critical_damping_over_range(o.k, o.inertia, {o.proximal_mm * 1e-3, o.distal_mm * 1e-3},
                                              o.theta_min_deg * deg, o.theta_max_deg * deg, o.n);

@@ -1,9 +1,16 @@
-// [mpirun -np N] phasmid sweep CONFIG [-o OUT.h5] [--resume] [--shard i/N] [--set NAME=VALUE ...] [-j THREADS]
-#include <iostream>
+// [mpirun -np N] phasmid sweep CONFIG [-o OUT.h5] [--resume] [--shard i/N] [--set NAME=VALUE ...] [-j THREADS] [-q]
+#include <fmt/format.h>
 
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "app/options.hpp"
 #include "app/verb.hpp"
-#include "common/error.hpp"
-#include "config/config.hpp"
+#include "config/sweep_inputs.hpp"
+#include "dist/executor.hpp"
+#include "io/h5_file.hpp"
+#include "sweep/ranges.hpp"
 #include "sweep/sweep_runner.hpp"
 
 namespace phasmid::app {
@@ -12,16 +19,35 @@ struct SweepArgs {
   std::string config, out = "sweep.h5";
   std::vector<std::string> sets;
   std::string shard;
-  bool resume = false, quiet = false;
+  bool resume = false, quiet = false, json = false;
   int threads = 0;
   long stop_after = -1;
 };
+
+// The range analysis of a one-at-a-time sweep, read back from the file it was written to.
+void print_ranges(const std::string& path, bool json) {
+  io::H5Reader in(path);
+  const auto ranges = sweep::read_ranges_h5(in);
+  if (ranges.empty()) return;
+  if (json) {
+    nlohmann::json j = nlohmann::json::array();
+    auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+    for (const auto& r : ranges)
+      j.push_back({{"parameter", r.parameter}, {"lower", num(r.lower)}, {"upper", num(r.upper)},
+                   {"contiguous", r.contiguous}, {"values", r.values}, {"in_range", r.in_range}});
+    std::cout << j.dump(2) << "\n";
+    return;
+  }
+  std::cout << "range of " << in.read_string_attribute("/sweep/ranges", "feature") << " = 1:\n"
+            << fmt::format("{:<24} {:>10} {:>10}  {}\n", "parameter", "lower", "upper", "contiguous");
+  for (const auto& r : ranges)
+    std::cout << fmt::format("{:<24} {:>10.4g} {:>10.4g}  {}\n", r.parameter, r.lower, r.upper, r.contiguous ? "yes" : "no");
+}
 
 int run(const SweepArgs& a) {
   config::Config cfg = config::load_config(a.config);
   sweep::SweepOptions o;
   o.output = a.out;
-  o.sets = a.sets;
   o.resume = a.resume;
   o.threads = a.threads;
   o.stop_after = a.stop_after;
@@ -29,7 +55,7 @@ int run(const SweepArgs& a) {
   o.progress = !a.quiet;
   o.handle_signals = true;
   o.command = command_line();
-  sweep::SweepOutcome r = sweep::run_sweep(cfg, o);
+  sweep::SweepOutcome r = sweep::run_sweep(config::sweep_inputs(cfg, a.sets), o);
   if (r.worker) return 0;  // MPI worker rank: rank 0 reports
   if (!r.complete) {
     std::cerr << "phasmid sweep: " << (r.signal ? "interrupted" : "stopped") << " with "
@@ -38,6 +64,7 @@ int run(const SweepArgs& a) {
               << a.out << (a.shard.empty() ? "" : " --shard " + a.shard) << " --resume\n";
     return r.signal ? 128 + r.signal : 3;
   }
+  if (a.shard.empty()) print_ranges(r.output, a.json);
   if (!a.quiet)
     std::cerr << "phasmid sweep: " << r.n_points << " points" << (a.shard.empty() ? "" : " of shard " + a.shard) << " (" << r.n_failed << " failed, " << r.n_recovered
               << " resumed) on " << r.executor << " in " << r.wall_seconds << " s -> " << r.output << "\n";
@@ -45,21 +72,21 @@ int run(const SweepArgs& a) {
   return 0;
 }
 
-const RegisterVerb reg{{"sweep", "Simulate every point of a parameter sweep ([sweep] section) and write features to HDF5",
+const RegisterVerb reg{{"sweep", "Run every point of a parameter sweep ([sweep] section) and write features to HDF5",
                         [](CLI::App& sub) {
                           auto a = std::make_shared<SweepArgs>();
-                          sub.add_option("config", a->config, "scenario config (TOML) with a [sweep] section")->required();
-                          sub.add_option("-o,--output", a->out, "output HDF5 file (default sweep.h5)");
+                          add_config_arg(sub, a->config, "scenario config (TOML) with a [sweep] section");
+                          add_output(sub, a->out, "sweep.h5");
                           sub.add_flag("--resume", a->resume, "continue an interrupted sweep from OUT.h5.journal");
                           sub.add_option("--shard", a->shard,
                                          "i/N: only points with index i modulo N, written as a shard for `phasmid merge`");
-                          sub.add_option("--set", a->sets, "override a parameter for every point: NAME=VALUE (repeatable)");
-                          sub.add_option("-j,--threads", a->threads, "worker threads (default: OMP_NUM_THREADS or all cores; under mpirun per rank, default OMP_NUM_THREADS or 1)")
-                              ->check(CLI::NonNegativeNumber);
+                          add_sets(sub, a->sets);
+                          add_threads(sub, a->threads);
                           sub.add_option("--stop-after", a->stop_after,
                                          "testing: stop as if interrupted after computing K points")
                               ->check(CLI::NonNegativeNumber);
-                          sub.add_flag("-q,--quiet", a->quiet, "no progress bar or summary");
+                          add_quiet(sub, a->quiet);
+                          add_json(sub, a->json);
                           return std::function<int()>([a] { return run(*a); });
                         }}};
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/error.hpp"
+#include "common/units.hpp"
 
 namespace phasmid::config {
 namespace {
@@ -57,7 +58,7 @@ std::string parse_event(const Config& cfg, const toml::node& node, const model::
                 (legs.empty() ? "; this model has no legs with ground contact)" : " with leg one of " + legs + ")"));
   tr.state = m.state_index(leg + ".ctr.beta");
   tr.level_param = m.parameters().index(leg + ".coupling.beta_thr_pr");
-  tr.level_scale = M_PI / 180.0;  // threshold in deg, beta integrated in rad
+  tr.level_scale = units::kRadPerDeg;  // threshold in deg, beta integrated in rad
   tr.direction = kind == "liftoff" ? +1 : -1;
   return leg;
 }
@@ -85,7 +86,7 @@ void parse_in_stance(const Config& cfg, const toml::node& node, const model::Ode
     c.leg = *leg;
     c.state = m.state_index(*leg + ".ctr.beta");
     c.level_param = m.parameters().index(*leg + ".coupling.beta_thr_pr");
-    c.level_scale = M_PI / 180.0;
+    c.level_scale = units::kRadPerDeg;
     c.stance_side = -1;  // the direction of <leg>.touchdown: beta below the threshold
     tr.in_stance.push_back(std::move(c));
   }

@@ -222,22 +222,11 @@ void CruseFitProblem::write_model_output(io::H5Writer& out, const double* x, boo
   write_run_contents(out, p, run, measure(run, p));
 }
 
-bool is_cruse_config(const config::Config& cfg) {
-  auto m = cfg.table["model"].value<std::string>();
-  return m && *m == "cruse1980";
-}
-
-CruseFit load_cruse_fit(const std::string& config_path, const std::vector<std::string>& sets,
-                        const fit::FitOverrides& ov) {
+CruseFit load_cruse_fit(const Parameters& base, const config::Config& cfg, const fit::FitOverrides& ov) {
   using config::check_keys;
   using config::number;
   using config::where;
   CruseFit out;
-  out.config = load_config(config_path);
-  for (const auto& s : sets) apply_set(out.config.parameters, s);
-  // The same text as a generic config, for the [fit] parser (paths relative to the file).
-  const bool embedded = out.config.origin != config_path;
-  const config::Config cfg = config::parse_config(out.config.text, (embedded ? "embedded:" : "") + out.config.origin);
   if (!ov.data.empty() || !ov.data_format.empty())
     throw Error("--data: the cruse1980 model has no kinematic channels; give [[fit.feature]] targets");
   const toml::table& fit = fit::fit_section(cfg);
@@ -247,9 +236,7 @@ CruseFit load_cruse_fit(const std::string& config_path, const std::vector<std::s
               "start_positions", "cycles"});
   fit::FitSpec& spec = out.spec;
   // Default optimiser: derivative-free (the config or --optimizer may choose another NLopt method).
-  spec.optimizer.backend = fit::Backend::NLopt;
-  spec.optimizer.nlopt_algorithm = "BOBYQA";
-  const Parameters& base = out.config.parameters;
+  spec.optimizer.method = "nlopt:BOBYQA";
   fit::load_fit_common(cfg, fit, ov, {"feature"},
                        [&](const std::string& id) {
                          for (const auto& np : base.all())

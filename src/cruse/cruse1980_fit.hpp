@@ -75,17 +75,12 @@ class CruseFitProblem : public fit::ResidualProblem {
   std::vector<std::vector<std::string>> tied_;   // per estimated parameter: the names it sets
 };
 
-// `phasmid fit` on a cruse1980 config: [cruse1980] (with --set overrides) is the model, [fit]
-// the fit. Throws Error (one line, naming file:line) on bad input.
+// The fit of a cruse1980 scenario's [fit] section: `base` holds the scenario's parameters
+// (after [parameters] and --set). Throws Error (one line, naming file:line) on bad input.
 struct CruseFit {
-  LoadedConfig config;
   fit::FitSpec spec;
   std::unique_ptr<CruseFitProblem> problem;
 };
-CruseFit load_cruse_fit(const std::string& config_path, const std::vector<std::string>& sets,
-                        const fit::FitOverrides& overrides);
-
-// True if the config (file or embedded name) says model = "cruse1980".
-bool is_cruse_config(const config::Config& cfg);
+CruseFit load_cruse_fit(const Parameters& base, const config::Config& cfg, const fit::FitOverrides& overrides);
 
 }  // namespace phasmid::cruse

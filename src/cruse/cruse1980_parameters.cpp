@@ -4,11 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
-#include <toml++/toml.h>
 
-#include "common/embedded.hpp"
 #include "common/error.hpp"
 
 namespace phasmid::cruse {
@@ -139,109 +135,6 @@ std::array<double, kLegCount> table2_start(int position) {
     throw Error(fmt::format("cruse1980: start_position must be 1..10 (Table 2), got {}", position));
   const int c = position - 1;
   return {ol1[c], ol2[c], ol3[c], or1[c], or2[c], or3[c]};
-}
-
-namespace {
-
-Gait parse_gait(const std::string& word, const std::string& where) {
-  if (word == "II" || word == "2") return Gait::II;
-  if (word == "I" || word == "1") return Gait::I;
-  throw Error(fmt::format("{}: gait must be \"I\" or \"II\", got \"{}\"", where, word));
-}
-
-Stepping parse_stepping(const std::string& word, const std::string& where) {
-  if (word == "raster") return Stepping::Raster;
-  if (word == "continuous") return Stepping::Continuous;
-  throw Error(fmt::format("{}: time_stepping must be \"raster\" or \"continuous\", got \"{}\"", where, word));
-}
-
-// Walks [cruse1980] (sub-tables give dotted names) and assigns every key.
-void read_table(const toml::table& table, const std::string& prefix, const std::string& origin, Parameters& p) {
-  for (const auto& [key, node] : table) {
-    const std::string name = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
-    const auto line = node.source().begin.line;
-    const std::string where = fmt::format("{}:{}: cruse1980.{}", origin, line, name);
-    if (const auto* sub = node.as_table()) {
-      read_table(*sub, name, origin, p);
-    } else if (name == "gait") {
-      if (!node.is_string()) throw Error(where + " must be a string");
-      p.gait = parse_gait(node.value<std::string>().value(), where);
-    } else if (name == "time_stepping") {
-      if (!node.is_string()) throw Error(where + " must be a string");
-      p.stepping = parse_stepping(node.value<std::string>().value(), where);
-    } else if (p.has(name)) {
-      auto v = node.value<double>();
-      if (!v) throw Error(where + " must be a number");
-      try {
-        p.set(name, *v);
-      } catch (const Error& e) {
-        throw Error(fmt::format("{}:{}: {}", origin, line, e.what()));
-      }
-    } else {
-      throw Error(fmt::format("{}:{}: unknown key 'cruse1980.{}'", origin, line, name));
-    }
-  }
-}
-
-}  // namespace
-
-LoadedConfig load_config(const std::string& path_or_embedded) {
-  LoadedConfig out;
-  std::ifstream in(path_or_embedded);
-  if (in) {
-    std::stringstream ss;
-    ss << in.rdbuf();
-    out.text = ss.str();
-    out.origin = path_or_embedded;
-  } else {
-    const auto& files = embedded::files();
-    auto it = files.find(path_or_embedded);
-    if (it == files.end()) it = files.find("configs/" + path_or_embedded);
-    if (it == files.end()) it = files.find("configs/" + path_or_embedded + ".toml");
-    if (it == files.end()) throw Error(fmt::format("{}: cannot open config (not a file nor an embedded config)", path_or_embedded));
-    out.text = it->second;
-    out.origin = it->first;
-  }
-  toml::table root;
-  try {
-    root = toml::parse(out.text, out.origin);
-  } catch (const toml::parse_error& e) {
-    throw Error(fmt::format("{}:{}: {}", out.origin, e.source().begin.line, e.description()));
-  }
-  const auto model = root["model"].value<std::string>();
-  if (!model || *model != "cruse1980")
-    throw Error(fmt::format("{}: model must be \"cruse1980\" for this verb", out.origin));
-  const auto* section = root["cruse1980"].as_table();
-  if (!section) throw Error(fmt::format("{}: missing [cruse1980] section", out.origin));
-  read_table(*section, "", out.origin, out.parameters);
-  return out;
-}
-
-void apply_set(Parameters& p, const std::string& assignment) {
-  const auto eq = assignment.find('=');
-  if (eq == std::string::npos) throw Error(fmt::format("--set '{}': expected NAME=VALUE", assignment));
-  std::string name = assignment.substr(0, eq);
-  const std::string value = assignment.substr(eq + 1);
-  if (name.rfind("cruse1980.", 0) == 0) name = name.substr(10);
-  const std::string where = "--set " + assignment;
-  if (name == "gait") {
-    p.gait = parse_gait(value, where);
-    return;
-  }
-  if (name == "time_stepping") {
-    p.stepping = parse_stepping(value, where);
-    return;
-  }
-  if (!p.has(name)) throw Error(fmt::format("{}: unknown parameter '{}'", where, name));
-  std::size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(value, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != value.size()) throw Error(fmt::format("{}: '{}' is not a number", where, value));
-  p.set(name, v);
 }
 
 }  // namespace phasmid::cruse

@@ -1,6 +1,6 @@
 #pragma once
 // Named parameters of the Cruse (1980) leg-coordination model: every number the model uses,
-// with unit and source. Loaded from the [cruse1980] section of a TOML config; --set overrides.
+// with unit and source. A cruse1980 scenario (cruse1980_scenario.cpp) exposes them by name.
 #include <array>
 #include <map>
 #include <string>
@@ -56,18 +56,5 @@ const std::vector<double>& switch_node_periods();
 
 // Table 2 of Cruse (1980): initial oscillator outputs, row `position` (1..10), legs L1..R3.
 std::array<double, kLegCount> table2_start(int position);
-
-// Reads a config file (or an embedded "configs/x.toml" name); unknown keys inside [cruse1980]
-// are errors naming file, line and key; other sections are ignored.
-struct LoadedConfig {
-  Parameters parameters;
-  std::string text;    // the config text as read
-  std::string origin;  // file path or embedded key
-};
-LoadedConfig load_config(const std::string& path_or_embedded);
-
-// Applies "NAME=VALUE" (NAME with or without the "cruse1980." prefix; gait/time_stepping take
-// their words). Throws phasmid::Error naming the assignment on failure.
-void apply_set(Parameters& p, const std::string& assignment);
 
 }  // namespace phasmid::cruse

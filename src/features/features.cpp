@@ -5,6 +5,7 @@
 #include <map>
 
 #include "common/error.hpp"
+#include "common/units.hpp"
 #include "io/h5_file.hpp"
 #include "model/leg_tables.hpp"
 #include "sensitivity/event_time.hpp"
@@ -28,8 +29,6 @@ struct Extremum {
   Dual angle;  // deg
 };
 
-constexpr double kDeg = 180.0 / M_PI;
-
 // Extrema of one channel in time order, after the transient, with wiggles removed.
 std::vector<Extremum> channel_extrema(const model::AngleChannel& ch, size_t root_index, const solver::RootSpec& root,
                                       const solver::SolveResult& res, const FeatureOptions& opt, bool with_grad) {
@@ -44,12 +43,12 @@ std::vector<Extremum> channel_extrema(const model::AngleChannel& ch, size_t root
     Extremum x;
     x.is_max = e.direction < 0;  // velocity falls through zero at a maximum
     x.t.v = e.t;
-    x.angle.v = e.y.at(ch.angle_state) * kDeg;
+    x.angle.v = e.y.at(ch.angle_state) * units::kDegPerRad;
     x.t.g = Eigen::VectorXd::Zero(ns);
     x.angle.g = Eigen::VectorXd::Zero(ns);
     if (with_grad && e.t >= opt.discard_ms) {
       x.t.g = sensitivity::event_time_sensitivity(e, root, ns);
-      x.angle.g = sensitivity::state_at_event_sensitivity(e, ch.angle_state, x.t.g) * kDeg;
+      x.angle.g = sensitivity::state_at_event_sensitivity(e, ch.angle_state, x.t.g) * units::kDegPerRad;
     }
     ex.push_back(std::move(x));
   }
@@ -181,8 +180,8 @@ EventDual event_dual(const solver::Event& e, const solver::RootSpec& root, size_
 }
 // The angle (deg) of state i at an event, with its total derivative.
 Dual angle_at(const EventDual& x, size_t i, size_t ns, bool with_grad) {
-  Dual a{x.e->y.at(i) * kDeg, Eigen::VectorXd::Zero(ns)};
-  if (with_grad && ns) a.g = sensitivity::state_at_event_sensitivity(*x.e, i, x.t.g) * kDeg;
+  Dual a{x.e->y.at(i) * units::kDegPerRad, Eigen::VectorXd::Zero(ns)};
+  if (with_grad && ns) a.g = sensitivity::state_at_event_sensitivity(*x.e, i, x.t.g) * units::kDegPerRad;
   return a;
 }
 // d level / d p_j for the sensitivity parameters: `factor` for the model parameter `name`.
@@ -289,7 +288,7 @@ std::vector<DualFeature> leg_features(const model::OdeModel& model, const solver
     // Debounce: a swing or stance episode shorter than min_contact_ms (beta rippling around
     // the threshold while a motoneuron fires) is removed with its two crossings.
     const solver::RootSpec& beta_root = roots[first_spec + l];
-    const Eigen::VectorXd dthr = level_gradient(model, res, ns, pre + "coupling.beta_thr_pr", M_PI / 180.0);
+    const Eigen::VectorXd dthr = level_gradient(model, res, ns, pre + "coupling.beta_thr_pr", units::kRadPerDeg);
     std::vector<EventDual> ev;
     for (const solver::Event* e : debounced_events(res, first + l, opt.discard_ms, opt.min_contact_ms))
       ev.push_back(event_dual(*e, beta_root, ns, with_grad, dthr));
@@ -452,7 +451,7 @@ std::vector<solver::RootSpec> feature_roots(const model::OdeModel& model, const 
   std::vector<solver::RootSpec> roots;
   for (const auto& ch : model.angles()) roots.push_back({ch.velocity_state, 0.0, 0});
   const std::vector<LegRoot> legs = leg_roots(model, p);
-  for (const auto& l : legs) roots.push_back({l.beta_state, l.threshold_deg * M_PI / 180.0, 0});
+  for (const auto& l : legs) roots.push_back({l.beta_state, units::deg_to_rad(l.threshold_deg), 0});
   for (const auto& l : legs)
     if (l.retractor_state != kNoState) roots.push_back({l.retractor_state, l.retractor_level_mV, 0});
   return roots;

@@ -1,8 +1,8 @@
 #pragma once
-// Gait features from located events (DESIGN.md §1): extrema of every joint angle are found
+// Gait features from located events (docs/features.md): extrema of every joint angle are found
 // by CVODES root finding on the angular velocity, so feature values are exact up to the
 // solver tolerance and differentiable with respect to the parameters (see
-// src/sensitivity/event_time.hpp and docs/features.md).
+// src/sensitivity/event_time.hpp).
 #include <string>
 #include <vector>
 
@@ -76,7 +76,7 @@ std::vector<FeatureGradient> compute_feature_gradients(const model::OdeModel& mo
                                                        const solver::SolveResult& result,
                                                        const FeatureOptions& options = {});
 
-// `/features/<name>` scalar datasets with a `units` attribute (DESIGN.md §3).
+// `/features/<name>` scalar datasets with a `units` attribute (docs/hdf5.md).
 void write_features_h5(io::H5Writer& out, const std::vector<Feature>& features);
 // Reads every scalar under `/features`; throws Error (one line) if the file has no such group.
 std::vector<Feature> read_features_h5(const io::H5Reader& in);

@@ -17,13 +17,7 @@ using config::text;
 
 namespace {
 
-bool boolean(const config::Config& cfg, const toml::node& n, const std::string& key) {
-  if (auto v = n.value<bool>()) return *v;
-  if (auto v = n.value<int64_t>()) {
-    if (*v == 0 || *v == 1) return *v == 1;
-  }
-  throw Error(where(cfg, n) + ": '" + key + "' must be true or false");
-}
+using config::boolean;
 
 long integer(const config::Config& cfg, const toml::node& n, const std::string& key, long lo) {
   auto v = n.value<int64_t>();
@@ -174,8 +168,9 @@ void load_fit_common(const config::Config& cfg, const toml::table& fit, const Fi
     static const std::set<std::string> losses = {"none", "huber", "cauchy", "soft_l1", "arctan"};
     if (!losses.count(spec.optimizer.loss))
       throw Error(where(cfg, *get("loss")) + ": loss must be none, huber, cauchy, soft_l1 or arctan");
-    if (spec.optimizer.loss != "none" && spec.optimizer.backend != Backend::Ceres)
-      throw Error(where(cfg, *get("loss")) + ": robust losses need the ceres optimizer");
+    if (spec.optimizer.loss != "none" && !optimizer_info(spec.optimizer).robust_loss)
+      throw Error(where(cfg, *get("loss")) + ": robust losses need one of " +
+                  optimizer_list([](const OptimizerInfo& a) { return a.robust_loss; }) + ", not " + spec.optimizer.method);
   }
   if (auto n = get("multistart")) spec.multistart.starts = static_cast<size_t>(integer(cfg, *n, "multistart", 1));
   if (ov.multistart >= 0) {
@@ -192,6 +187,7 @@ void load_fit_common(const config::Config& cfg, const toml::table& fit, const Fi
   if (auto n = get("seed")) spec.multistart.seed = static_cast<std::uint64_t>(integer(cfg, *n, "seed", 0));
   if (ov.seed >= 0) spec.multistart.seed = static_cast<std::uint64_t>(ov.seed);
   if (auto n = get("threads")) spec.multistart.threads = static_cast<int>(integer(cfg, *n, "threads", 0));
+  if (ov.threads > 0) spec.multistart.threads = ov.threads;
   if (auto n = get("absolute_sigma")) spec.absolute_sigma = boolean(cfg, *n, "absolute_sigma");
   if (auto n = get("profile")) {
     auto a = n->as_array();

@@ -37,6 +37,7 @@ struct FitOverrides {
   long seed = -1;            // --seed
   std::string target_set;    // --target-set
   long max_iterations = -1;  // --max-iterations
+  int threads = 0;           // -j (0: [fit] threads, else OpenMP's default)
 };
 
 // `model` must be the model built from the same config (nominal values default to its values).

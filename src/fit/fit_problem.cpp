@@ -5,18 +5,17 @@
 #include <set>
 
 #include "common/error.hpp"
+#include "common/units.hpp"
 #include "io/h5_file.hpp"
 #include "io/trajectory_writer.hpp"
 #include "model/leg_tables.hpp"
 
 namespace phasmid::fit {
 namespace {
-constexpr double kDeg = 180.0 / M_PI;
-
 // deg/s per unit of a velocity state.
 double deg_per_s(const std::string& unit, const std::string& state) {
-  if (unit == "rad/s") return kDeg;
-  if (unit == "rad/ms") return kDeg * 1000.0;
+  if (unit == "rad/s") return units::kDegPerRad;
+  if (unit == "rad/ms") return units::kDegPerRad * 1000.0;
   if (unit == "deg/s") return 1.0;
   throw Error("internal: velocity state '" + state + "' has unit '" + unit + "' (expected rad/s or rad/ms)");
 }
@@ -334,8 +333,8 @@ bool FitProblem::evaluate(const double* x, double* r, double* J, std::string* er
       const auto& ch = model_.angles()[switch_channel_[i]];
       const size_t k = R.switch_out[i];
       const double vfac = deg_per_s(model_.states()[ch.velocity_state].unit, model_.states()[ch.velocity_state].name);
-      r[row] = (res.state(k, ch.angle_state) * kDeg - s.angle_deg) / s.angle_tolerance_deg;
-      if (J && sens) set_model_row(row, [&](size_t c) { return res.sens(k, ch.angle_state, c) * kDeg / s.angle_tolerance_deg; });
+      r[row] = (res.state(k, ch.angle_state) * units::kDegPerRad - s.angle_deg) / s.angle_tolerance_deg;
+      if (J && sens) set_model_row(row, [&](size_t c) { return res.sens(k, ch.angle_state, c) * units::kDegPerRad / s.angle_tolerance_deg; });
       ++row;
       if (s.velocity_tolerance_deg_s > 0) {
         r[row] = res.state(k, ch.velocity_state) * vfac / s.velocity_tolerance_deg_s;
@@ -380,13 +379,13 @@ bool FitProblem::evaluate(const double* x, double* r, double* J, std::string* er
           const double d = kt.data.angles_deg[c][sidx];
           if (!(kt.data.time_ms[sidx] >= kt.t_min_ms) || !std::isfinite(d)) continue;
           const size_t k = R.kin_out[i][sidx];
-          r[row] = (res.state(k, ch.angle_state) * kDeg - d) / kt.sigma_deg;
+          r[row] = (res.state(k, ch.angle_state) * units::kDegPerRad - d) / kt.sigma_deg;
           if (J) {
-            if (sens) set_model_row(row, [&](size_t col) { return res.sens(k, ch.angle_state, col) * kDeg / kt.sigma_deg; });
+            if (sens) set_model_row(row, [&](size_t col) { return res.sens(k, ch.angle_state, col) * units::kDegPerRad / kt.sigma_deg; });
             if (offset_est_[i] >= 0) {
               for (size_t q = 0; q < nst; ++q) y[q] = res.state(k, q);
               model_.rhs(res.t[k], y.data(), R.p.data(), f.data());
-              dth[row * n + offset_est_[i]] = f[ch.angle_state] * kDeg / kt.sigma_deg;  // deg/ms per ms
+              dth[row * n + offset_est_[i]] = f[ch.angle_state] * units::kDegPerRad / kt.sigma_deg;  // deg/ms per ms
             }
           }
           ++row;
@@ -443,7 +442,7 @@ std::vector<FitProblem::KinematicComparison> FitProblem::kinematic_comparison(co
     for (size_t ch = 0; ch < kin_channels_[i].size(); ++ch) {
       const auto& a = model_.angles()[kin_channels_[i][ch]];
       std::vector<double> v;
-      for (size_t s = 0; s < kt.data.time_ms.size(); ++s) v.push_back(R.res.state(R.kin_out[i][s], a.angle_state) * kDeg);
+      for (size_t s = 0; s < kt.data.time_ms.size(); ++s) v.push_back(R.res.state(R.kin_out[i][s], a.angle_state) * units::kDegPerRad);
       c.model_deg.push_back(v);
     }
     out.push_back(std::move(c));

@@ -1,5 +1,5 @@
 #pragma once
-// Kinematic recordings as fit targets (DESIGN.md §3): joint angles in degrees over time.
+// Kinematic recordings as fit targets (docs/fit.md "Data files"): joint angles in degrees over time.
 //  - phasmid CSV: a `time_ms` column and one column per angle named `<leg>.<joint>`;
 //  - Anipose angle CSV: angle columns plus `fnum` (frame number); the frame rate and a
 //    column -> `<leg>.<joint>` mapping come from the config.

@@ -70,7 +70,7 @@ MultistartResult multistart(const ResidualProblem& problem, const OptimizerOptio
     try {
       s = optimize(problem, starts[t.id], o);
     } catch (const std::exception& e) {
-      s.optimizer = optimizer_name(o);
+      s.optimizer = o.method;
       s.x_start = s.x = starts[t.id];
       s.termination = "FAILURE";
       s.message = e.what();
@@ -86,7 +86,7 @@ MultistartResult multistart(const ResidualProblem& problem, const OptimizerOptio
     ++done;
     if (out.runs[i].usable && out.runs[i].final_cost < best) best = out.runs[i].final_cost;
     if (tty) std::fprintf(stderr, "\r%s [%s] multistart %zu/%zu done, best cost %.6g   ", options.progress_label.c_str(),
-                          optimizer_name(o).c_str(), done, n, best);
+                          o.method.c_str(), done, n, best);
   };
   std::vector<dist::Task> tasks;
   for (size_t i = 0; i < n; ++i) tasks.push_back({i, {}});

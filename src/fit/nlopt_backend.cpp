@@ -14,31 +14,9 @@
 namespace phasmid::fit {
 namespace {
 
-struct AlgoInfo {
-  nlopt_algorithm algo;
-  bool gradient;
-  bool global;
-};
-
-AlgoInfo algorithm(const std::string& name) {
-  if (name == "BOBYQA") return {NLOPT_LN_BOBYQA, false, false};
-  if (name == "COBYLA") return {NLOPT_LN_COBYLA, false, false};
-  if (name == "NELDERMEAD") return {NLOPT_LN_NELDERMEAD, false, false};
-  if (name == "SBPLX") return {NLOPT_LN_SBPLX, false, false};
-  if (name == "LBFGS") return {NLOPT_LD_LBFGS, true, false};
-  if (name == "SLSQP") return {NLOPT_LD_SLSQP, true, false};
-  if (name == "MMA") return {NLOPT_LD_MMA, true, false};
-  if (name == "DIRECT_L") return {NLOPT_GN_DIRECT_L, false, true};
-  if (name == "CRS2_LM") return {NLOPT_GN_CRS2_LM, false, true};
-  if (name == "ISRES") return {NLOPT_GN_ISRES, false, true};
-  if (name == "MLSL") return {NLOPT_G_MLSL_LDS, true, true};  // local searches: LBFGS with exact gradients
-  throw Error("unknown NLopt algorithm '" + name + "'");
-}
-
 struct Data {
   const ResidualProblem* problem;
   const OptimizerOptions* options;
-  bool gradient;
   std::vector<double> r, J;
   std::vector<double>* history;
   double best = std::numeric_limits<double>::infinity();
@@ -86,8 +64,8 @@ double objective(unsigned n, const double* x, double* grad, void* ud) {
   if (d->tty) {
     auto now = std::chrono::steady_clock::now();
     if (now - d->last_print > std::chrono::milliseconds(150)) {
-      std::fprintf(stderr, "\r%s [nlopt:%s] evaluation %4ld  best cost %.6g   ", d->options->progress_label.c_str(),
-                   d->options->nlopt_algorithm.c_str(), d->evals, d->best);
+      std::fprintf(stderr, "\r%s [%s] evaluation %4ld  best cost %.6g   ", d->options->progress_label.c_str(),
+                   d->options->method.c_str(), d->evals, d->best);
       d->last_print = now;
     }
   }
@@ -123,10 +101,12 @@ FitSummary optimize_nlopt(const ResidualProblem& problem, const std::vector<doub
   FitSummary out;
   if (!o.fixed.empty()) throw Error("internal: fixed parameters are supported by the Ceres back end only");
   const unsigned n = static_cast<unsigned>(problem.num_parameters());
-  const AlgoInfo info = algorithm(o.nlopt_algorithm);
+  const OptimizerInfo& info = optimizer_info(o);
+  if (info.backend != Backend::NLopt) throw Error("internal: " + info.name + " is not an NLopt optimizer");
+  const std::string algo = info.name.substr(info.name.find(':') + 1);  // "BOBYQA" of "nlopt:BOBYQA"
   OptHandle h, local;
-  h.o = nlopt_create(info.algo, n);
-  if (!h.o) throw Error("NLopt could not create " + o.nlopt_algorithm + " for " + std::to_string(n) + " parameters");
+  h.o = nlopt_create(static_cast<nlopt_algorithm>(info.nlopt_algorithm), n);
+  if (!h.o) throw Error("NLopt could not create " + algo + " for " + std::to_string(n) + " parameters");
   std::vector<double> lo = problem.lower(), hi = problem.upper(), x = x0;
   for (unsigned j = 0; j < n; ++j) x[j] = std::min(std::max(x[j], lo[j]), hi[j]);
   nlopt_set_lower_bounds(h.o, lo.data());
@@ -134,7 +114,6 @@ FitSummary optimize_nlopt(const ResidualProblem& problem, const std::vector<doub
   Data d;
   d.problem = &problem;
   d.options = &o;
-  d.gradient = info.gradient;
   d.r.resize(problem.num_residuals());
   d.J.resize(problem.num_residuals() * n);
   d.history = &out.cost_history;
@@ -144,16 +123,16 @@ FitSummary optimize_nlopt(const ResidualProblem& problem, const std::vector<doub
   nlopt_set_ftol_rel(h.o, o.function_tolerance);
   nlopt_set_xtol_rel(h.o, o.parameter_tolerance);
   nlopt_set_maxeval(h.o, o.max_evaluations);
-  if (info.algo == NLOPT_G_MLSL_LDS) {
-    local.o = nlopt_create(NLOPT_LD_LBFGS, n);
+  if (!info.local.empty()) {
+    local.o = nlopt_create(static_cast<nlopt_algorithm>(find_optimizer(info.local).nlopt_algorithm), n);
     nlopt_set_ftol_rel(local.o, 1e-8);
     nlopt_set_xtol_rel(local.o, 1e-8);
     nlopt_set_maxeval(local.o, std::max(20, o.max_evaluations / 10));
     nlopt_set_local_optimizer(h.o, local.o);
   }
-  if (info.algo == NLOPT_GN_ISRES || info.algo == NLOPT_GN_CRS2_LM || info.algo == NLOPT_G_MLSL_LDS) nlopt_srand(12345);
+  if (info.seeded) nlopt_srand(12345);
   // Initial step for local derivative-free methods: a tenth of the (scaled) range.
-  if (!info.gradient && !info.global) {
+  if (!info.needs_gradient && !info.global) {
     std::vector<double> dx(n);
     for (unsigned j = 0; j < n; ++j) dx[j] = 0.1 * (hi[j] - lo[j]);
     nlopt_set_initial_step(h.o, dx.data());
@@ -179,7 +158,7 @@ FitSummary optimize_nlopt(const ResidualProblem& problem, const std::vector<doub
   out.evaluations = d.evals;
   out.jacobian_evaluations = d.jac_evals;
   out.failed_evaluations = d.failed;
-  out.report = std::string("nlopt ") + o.nlopt_algorithm + ": " + result_name(res) + ", " + std::to_string(d.evals) + " evaluations";
+  out.report = "nlopt " + algo + ": " + result_name(res) + ", " + std::to_string(d.evals) + " evaluations";
   return out;
 }
 

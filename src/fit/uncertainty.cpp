@@ -113,7 +113,7 @@ std::vector<size_t> profile_side(int dir, size_t points) {
 
 void profile_walk(const ResidualProblem& problem, const std::vector<double>& x_opt, double cost_opt, size_t j,
                   double sigma2, const std::vector<double>& grid, int dir, OptimizerOptions o, Profile& pr) {
-  o.backend = Backend::Ceres;  // profiles re-optimise with exact Jacobians
+  o.method = "ceres";  // profiles re-optimise with exact Jacobians and held parameters
   o.fixed = {j};
   o.progress = false;
   const double s2 = std::isfinite(sigma2) && sigma2 > 0 ? sigma2 : 1.0;

@@ -1,5 +1,6 @@
 #include "io/trajectory_writer.hpp"
 
+#include "common/units.hpp"
 #include "model/body_kinematics.hpp"
 
 #include <algorithm>
@@ -13,9 +14,9 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
   const size_t n_out = r.t.size();
   std::vector<double> col(n_out);
   for (const auto& a : m.angles()) {
-    for (size_t k = 0; k < n_out; ++k) col[k] = r.state(k, a.angle_state) * 180.0 / M_PI;
+    for (size_t k = 0; k < n_out; ++k) col[k] = units::rad_to_deg(r.state(k, a.angle_state));
     w.write("/trajectory/angles/" + a.leg + "/" + a.joint, col, "deg");
-    for (size_t k = 0; k < n_out; ++k) col[k] = r.state(k, a.velocity_state) * 180.0 / M_PI;
+    for (size_t k = 0; k < n_out; ++k) col[k] = units::rad_to_deg(r.state(k, a.velocity_state));
     w.write("/trajectory/angular_velocity/" + a.leg + "/" + a.joint, col, "deg/s");
   }
   // Footfall pattern of walking models: 1 swing, 0 stance (ground contact: beta below the
@@ -23,7 +24,7 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
   for (const auto& a : m.angles()) {
     const std::string thr = a.leg + ".coupling.beta_thr_pr";
     if (a.joint != "ctr" || !m.parameters().contains(thr)) continue;
-    const double thr_rad = m.parameters().value(thr) * M_PI / 180.0;
+    const double thr_rad = units::deg_to_rad(m.parameters().value(thr));
     for (size_t k = 0; k < n_out; ++k) col[k] = r.state(k, a.angle_state) < thr_rad ? 0.0 : 1.0;
     w.write("/trajectory/footfall/" + a.leg, col, "1");
   }
@@ -48,7 +49,7 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
       auto it = side.find(a.leg);
       if (it == side.end()) continue;
       std::vector<double> x(n_out);
-      for (size_t k = 0; k < n_out; ++k) x[k] = r.state(k, a.angle_state) * 180.0 / M_PI;
+      for (size_t k = 0; k < n_out; ++k) x[k] = units::rad_to_deg(r.state(k, a.angle_state));
       w.write("/trajectory/angles/L" + it->second + "/" + a.joint, x, "deg");
       w.write("/trajectory/angles/R" + it->second + "/" + a.joint, delayed(x), "deg");
       const std::string thr = a.leg + ".coupling.beta_thr_pr";
@@ -67,7 +68,7 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
     for (const auto& ch : m.angles()) {
       if (ch.leg != "L2" && ch.leg != "R2") continue;
       std::vector<double> x(n_out);
-      for (size_t k = 0; k < n_out; ++k) x[k] = r.state(k, ch.angle_state) * 180.0 / M_PI;
+      for (size_t k = 0; k < n_out; ++k) x[k] = units::rad_to_deg(r.state(k, ch.angle_state));
       a[ch.leg + "." + ch.joint] = x;
     }
     model::BodyPath bp = model::integrate_body_path(
@@ -87,12 +88,16 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
 }
 
 void write_parameters(H5Writer& w, const model::OdeModel& m, const std::vector<double>& p) {
+  write_parameters(w, m.parameters(), p);
+}
+
+void write_parameters(H5Writer& w, const model::ParameterSet& ps, const std::vector<double>& p) {
   std::vector<std::string> units, sources;
-  for (auto& q : m.parameters().all()) {
+  for (auto& q : ps.all()) {
     units.push_back(q.unit);
     sources.push_back(q.source);
   }
-  w.write("/parameters/names", m.parameters().names());
+  w.write("/parameters/names", ps.names());
   w.write("/parameters/values", p, "see /parameters/units");
   w.write("/parameters/units", units);
   w.write("/parameters/sources", sources);

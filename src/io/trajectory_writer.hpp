@@ -10,5 +10,6 @@ namespace phasmid::io {
 void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::SolveResult& r);
 // /parameters/names, /parameters/values, /parameters/units, /parameters/sources.
 void write_parameters(H5Writer& w, const model::OdeModel& m, const std::vector<double>& p);
+void write_parameters(H5Writer& w, const model::ParameterSet& parameters, const std::vector<double>& p);
 
 }  // namespace phasmid::io

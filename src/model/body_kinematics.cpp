@@ -2,12 +2,13 @@
 
 #include <cmath>
 
+#include "common/units.hpp"
+
 namespace phasmid::model {
 
 BodyPath integrate_body_path(const std::vector<double>& t, const std::vector<double>& aL, const std::vector<double>& bL,
                              const std::vector<double>& aR, const std::vector<double>& bR, double thr, double reach,
                              double half_width) {
-  constexpr double kRad = M_PI / 180.0;
   const size_t n = t.size();
   BodyPath p;
   p.x_mm.assign(n, 0.0);
@@ -17,10 +18,10 @@ BodyPath integrate_body_path(const std::vector<double>& t, const std::vector<dou
   for (size_t k = 1; k < n; ++k) {
     const double dt = t[k] - t[k - 1];  // ms
     auto push = [&](const std::vector<double>& a, const std::vector<double>& b, double& lever) {
-      const double am = 0.5 * (a[k] + a[k - 1]) * kRad;
+      const double am = 0.5 * (a[k] + a[k - 1]) * units::kRadPerDeg;
       lever = half_width + reach * std::sin(am);
       if (0.5 * (b[k] + b[k - 1]) >= thr) return 0.0;           // swing: no push
-      return reach * std::sin(am) * (a[k] - a[k - 1]) * kRad;  // mm over dt (retraction > 0)
+      return reach * std::sin(am) * (a[k] - a[k - 1]) * units::kRadPerDeg;  // mm over dt (retraction > 0)
     };
     double wL, wR;
     const double dL = push(aL, bL, wL), dR = push(aR, bR, wR);
@@ -32,7 +33,7 @@ BodyPath integrate_body_path(const std::vector<double>& t, const std::vector<dou
     (void)dt;
     p.x_mm[k] = x;
     p.y_mm[k] = y;
-    p.heading_deg[k] = th / kRad;
+    p.heading_deg[k] = th / units::kRadPerDeg;
   }
   return p;
 }

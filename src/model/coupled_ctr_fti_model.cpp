@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "common/units.hpp"
+
 namespace phasmid::model {
 
 CoupledCtrFtiModel::CoupledCtrFtiModel(const std::string& leg) {
@@ -29,7 +31,7 @@ CoupledCtrFtiModel::CoupledCtrFtiModel(const std::string& leg) {
 }
 
 std::vector<double> CoupledCtrFtiModel::initial_state(const std::vector<double>& p) const {
-  return {p[beta0_] * M_PI / 180, 0.0, p[gamma0_] * M_PI / 180, 0.0};
+  return {units::deg_to_rad(p[beta0_]), 0.0, units::deg_to_rad(p[gamma0_]), 0.0};
 }
 
 std::vector<double> CoupledCtrFtiModel::breakpoints(const std::vector<double>& p, double t_end) const {

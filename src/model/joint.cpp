@@ -2,9 +2,10 @@
 
 #include <cmath>
 
+#include "common/units.hpp"
+
 namespace phasmid::model {
 namespace {
-constexpr double kDeg = M_PI / 180.0;
 const char* kA10 = "Knops 2013, Table A.10 (Guschlbauer et al. 2007)";
 const char* kA11 = "Knops 2013, Table A.11 (Bassler 1983)";
 const char* kA12 = "Knops 2013, Table A.12 (Bassler 1983)";
@@ -75,7 +76,7 @@ JointMechanics define_joint_mechanics(ParameterSet& ps, const std::string& leg, 
 }
 
 double spring_constant_ratio(JointType type, double angle_deg) {
-  double a = angle_deg * kDeg;
+  double a = angle_deg * units::kRadPerDeg;
   switch (type) {
     case JointType::Fti: return fti_ratio(fti_geometry(), a);
     case JointType::Ctr: return ctr_ratio(ctr_geometry(), a);

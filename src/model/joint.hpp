@@ -23,7 +23,7 @@ struct JointMechanics {
 JointMechanics define_joint_mechanics(ParameterSet& ps, const std::string& leg, JointType type,
                                       const std::string& thc_set = "");
 
-// Angular acceleration in rad/s^2 (time in s, DESIGN.md §2) for angle (rad), omega (rad/s),
+// Angular acceleration in rad/s^2 (time in s, docs/model.md "Units") for angle (rad), omega (rad/s),
 // and the current spring constants of the inc and dec muscles (mN/mm^2).
 template <class T>
 T joint_acceleration(const JointMechanics& j, const T* p, const T& angle, const T& omega, const T& k_inc,

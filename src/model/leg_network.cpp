@@ -5,6 +5,13 @@
 #include "common/error.hpp"
 
 namespace phasmid::model {
+
+void LegOptions::hold_until(double start_ms) {
+  ld_release_ms = start_ms;
+  ld_release_source = "config start_ms (a choice: the seeds give no start phase of the single leg)";
+  ld_hold_g_pr = 5.0;
+  ld_hold_g_pr_source = "choice: PR silent until the start time, as in curve walking (Section 2.5.3: the PR is a reflex chain)";
+}
 namespace {
 const char* k32 = "Knops 2013, Section 3.2";
 const char* k322 = "Knops 2013, Section 3.2.2 / Fig. 3.11 (Toth et al. 2012); strength a documented choice (docs/walking_model.md)";
@@ -141,10 +148,10 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
       // The PR system is a reflex chain, "not active in the absence of the (excitatory)
       // peripheral input" (Section 2.5.3), but phasmid's PR CPG oscillates on its own (633 ms
       // at IN4 = 0.60 nS) and, with the held leg at beta ~ 40 deg (just above beta_thr_pr),
-      // ran freely through the hold: its phase at the release then depended on the release
-      // time, and a leg released in the PR's protraction phase retracted during its first swing,
-      // protracted during its first stance and needed up to four more steps to retract in
-      // stance (the apparent "second locking" of curve walking). The hold neuron therefore
+      // would run freely through the hold: its phase at the release would depend on the release
+      // time, and a leg released in the PR's protraction phase would retract during its first
+      // swing, protract during its first stance and need up to four more steps to retract in
+      // stance (an apparent "second locking" of curve walking). The hold neuron therefore
       // silences both PR CPGs until the leg's start time, so every leg starts its PR from the
       // same state. docs/walking_model.md, "Curve walking".
       SynapseIdx sp = si;

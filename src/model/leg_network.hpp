@@ -35,6 +35,10 @@ struct LegOptions {
   double ld_hold_g_pr = 0.0;
   std::string ld_hold_g_pr_source;
   MotoneuronModel motoneuron = MotoneuronModel::Spiking;  // used by build_leg_model
+
+  // A single leg held in stance, both PR CPGs silent, until `start_ms`, as each leg of curve
+  // walking (docs/walking_model.md, "Start time of a single leg").
+  void hold_until(double start_ms);
 };
 
 struct LegNetwork {

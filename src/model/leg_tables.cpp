@@ -29,7 +29,7 @@ JointNaming joint_naming(JointType j) {
   throw Error("bad joint");
 }
 
-// Six-leg names (L1..R3, DESIGN.md §3) use the tables of their segment.
+// Six-leg names (L1..R3, docs/walking_model.md "Six legs") use the tables of their segment.
 static std::string segment_of(const std::string& leg) {
   if (leg.size() == 2 && (leg[0] == 'L' || leg[0] == 'R')) {
     if (leg[1] == '1') return "front";

@@ -2,7 +2,18 @@
 
 #include <cmath>
 
+#include "common/units.hpp"
+
 namespace phasmid::model {
+
+std::unique_ptr<MechanicalJointModel> MechanicalJointModel::section311(const std::string& leg, JointType joint,
+                                                                      bool start_inc, const std::string& thc_set) {
+  const double period_ms = 500;
+  const double inc_ms = joint == JointType::Fti ? 250 : joint == JointType::Ctr ? 188 : 125;
+  const JointTable t = joint_table(leg, joint, thc_set);
+  return std::make_unique<MechanicalJointModel>(leg, joint, start_inc, start_inc ? inc_ms : period_ms - inc_ms,
+                                                period_ms, start_inc ? t.angle_min_deg : t.angle_max_deg, thc_set);
+}
 
 MechanicalJointModel::MechanicalJointModel(const std::string& leg, JointType joint, bool start_inc,
                                            double first_phase_ms, double period_ms, double angle0_deg,
@@ -22,7 +33,7 @@ MechanicalJointModel::MechanicalJointModel(const std::string& leg, JointType joi
 }
 
 std::vector<double> MechanicalJointModel::initial_state(const std::vector<double>& p) const {
-  return {p[angle0_] * M_PI / 180.0, 0.0};
+  return {units::deg_to_rad(p[angle0_]), 0.0};
 }
 
 std::vector<double> MechanicalJointModel::breakpoints(const std::vector<double>& p, double t_end) const {

@@ -2,7 +2,10 @@
 // Section 3.1.1: a single joint driven by mechanics only. The spring constants switch
 // between the two phases at prescribed times (no neurons), e.g. FTi flexion for 250 ms and
 // extension for 250 ms (period 500 ms, 1:1), starting at rest at gamma = 45 deg.
+#include <memory>
+
 #include "model/joint.hpp"
+#include "model/leg_tables.hpp"
 #include "model/ode_model.hpp"
 
 namespace phasmid::model {
@@ -12,6 +15,11 @@ class MechanicalJointModel : public OdeModelT<MechanicalJointModel> {
   // start_inc: whether the first phase is the angle-increasing one (flexion, levation, retraction).
   MechanicalJointModel(const std::string& leg, JointType joint, bool start_inc, double first_phase_ms,
                        double period_ms, double angle0_deg, const std::string& thc_set = "");
+  // The Section 3.1.1 set-up: period 500 ms; phase relations FE 1:1, PR 1:3 (retraction
+  // 125 ms), LD 3:5 (levation 188 ms); the joint starts at rest at the extremal angle of its
+  // first phase (the angle-increasing one if start_inc).
+  static std::unique_ptr<MechanicalJointModel> section311(const std::string& leg, JointType joint, bool start_inc,
+                                                          const std::string& thc_set = "");
   std::string kind() const override { return "mechanical_joint"; }
   const JointMechanics& joint() const { return joint_; }
   bool starts_inc() const { return start_inc_; }

@@ -1,6 +1,6 @@
 #pragma once
 // Joint mechanics of Knops (2013) Section 2.3, templated on the scalar type.
-// Units at this level are the dissertation's (DESIGN.md §2): spring constants in mN/mm^2,
+// Units at this level are the dissertation's (docs/model.md "Units"): spring constants in mN/mm^2,
 // lengths in mm, inertia in g*mm^2, viscosity in g/s, angles in rad, and time in SECONDS
 // (the tables are consistent with inserting these numbers directly into (2.22), (2.34),
 // (2.41)). Callers working in ms convert at their boundary.
@@ -26,7 +26,7 @@ struct FtiGeometry {
 
 // Fibre length and cos(fibre-tendon angle) for a tendon shift s (2.27)/(2.28). The shift is
 // s_F = -2d cos(gamma), s_E = d cos(gamma): the printed sine contradicts l_0 being the length
-// at 90 deg and does not reproduce Section 3.1's ratios (DESIGN.md §2).
+// at 90 deg and does not reproduce Section 3.1's ratios (docs/model.md "Muscles and joints").
 template <class T, class P>
 void fibre(const P& l0, const P& h, const T& shift, T& length, T& cos_phi) {
   using std::sqrt;

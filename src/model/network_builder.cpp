@@ -46,7 +46,7 @@ NeuronClasses define_neuron_classes(NetworkModel& m, MotoneuronModel mn_model) {
     x.gamma_m = def(cls + ".gamma_m", -1.0 / 6, "1/mV", src, "NaP activation slope");
     x.V_hh = def(cls + ".V_hh", V_hh, "mV", V_hh_src, "NaP inactivation midpoint");
     x.gamma_h = def(cls + ".gamma_h", 1.0 / 6, "1/mV",
-                    std::string(src) + "; sign corrected (printed -1/6 gives an activation curve, DESIGN.md §2)",
+                    std::string(src) + "; sign corrected (printed -1/6 gives an activation curve, docs/model.md)",
                     "NaP inactivation slope (positive: h_inf decreases with V)");
     x.V_tau_h = def(cls + ".V_tau_h", -30, "mV", src, "midpoint of the inactivation rate");
     x.gamma_tau = def(cls + ".gamma_tau", -1.0 / 12, "1/mV", src, "slope of the inactivation rate");

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/error.hpp"
+#include "common/units.hpp"
 
 namespace phasmid::model {
 
@@ -69,7 +70,7 @@ size_t NetworkModel::neuron_index(const std::string& name) const {
 
 std::vector<double> NetworkModel::initial_state(const std::vector<double>& p) const {
   std::vector<double> y = y0_;
-  for (const Joint& j : joints_) y[j.angle_state] = p[j.angle0] * M_PI / 180.0;
+  for (const Joint& j : joints_) y[j.angle_state] = units::deg_to_rad(p[j.angle0]);
   return y;
 }
 

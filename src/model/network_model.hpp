@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "common/units.hpp"
 #include "model/joint.hpp"
 #include "model/neurons.hpp"
 #include "model/ode_model.hpp"
@@ -155,10 +156,10 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   // muscle -> joint; the sensory and intersegmental modulations (sigmoids of joint angles)
   // are the couplings between parts.
   ModelPartition partition() const override;
-  // With rate motoneurons: 2.8x faster for 9 s of three legs at equal feature accuracy. Not with
-  // spiking ones: at the same rtol the joints' own step sizes lose accuracy in spike-driven
-  // features (front-leg durations off by 4.5 ms vs 0.3 ms at 1e-6), and at the tighter rtol that
-  // restores it no time is gained (docs/benchmarks.md "Partitioned integration").
+  // Rate motoneurons only: the joints' own step sizes keep feature accuracy and save time. With
+  // spiking ones they lose accuracy in spike-driven features at the same rtol, and the tighter
+  // rtol that restores it costs the time saved (figures: docs/benchmarks.md "Partitioned
+  // integration").
   bool partition_by_default() const override { return rate_mn_; }
   std::unique_ptr<OdeModelPart> make_part(const ModelPartition& partition, size_t k) const override;
 
@@ -193,7 +194,6 @@ T smooth_step(const T& x, const T& width) {
 
 template <class T>
 void NetworkModel::eval_components(const NetworkComponents& comp, double t, const T* y, const T* p, T* ydot) const {
-  constexpr double kRadToDeg = 180.0 / M_PI;
   // rate_mn: each rate MN's R(V), computed once for its own equation and its muscle's.
   // Only the entries of comp's neurons and muscles are used (synapses and modulations target them).
   thread_local std::vector<T> I_syn, g_extra, tone_release, rate_mn;
@@ -222,10 +222,10 @@ void NetworkModel::eval_components(const NetworkComponents& comp, double t, cons
     for (const Condition& c : m.conditions) {
       switch (c.kind) {
         case Condition::AngleBelow:
-          gate *= smooth_step(T(p[c.threshold] - y[c.angle_state] * kRadToDeg), p[c.width]);
+          gate *= smooth_step(T(p[c.threshold] - y[c.angle_state] * units::kDegPerRad), p[c.width]);
           break;
         case Condition::AngleAbove:
-          gate *= smooth_step(T(y[c.angle_state] * kRadToDeg - p[c.threshold]), p[c.width]);
+          gate *= smooth_step(T(y[c.angle_state] * units::kDegPerRad - p[c.threshold]), p[c.width]);
           break;
         case Condition::TimeAfter:  // central command: a step at a fixed time (a breakpoint)
           if (t < value_of(p[c.threshold])) gate = T(0.0);

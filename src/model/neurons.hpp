@@ -21,7 +21,7 @@ struct NapNeuronParams {
 };
 
 // Right-hand side of the NaP neuron given the total synaptic current I_syn (pA).
-// The inactivation follows dh/dt = eps (h_inf - h) cosh(gamma_tau (V - V_tau_h)) (DESIGN.md §2:
+// The inactivation follows dh/dt = eps (h_inf - h) cosh(gamma_tau (V - V_tau_h)) (docs/model.md "Neurons":
 // tau_h(V) = 1 / (eps cosh(...)), the form of Daun et al. 2009 that Table A.1's
 // "time constant coefficient" eps belongs to).
 template <class T, class P>

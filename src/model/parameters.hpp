@@ -1,5 +1,5 @@
 #pragma once
-// Every number of a model is a named parameter with a unit and a source (DESIGN.md §1).
+// Every number of a model is a named parameter with a unit and a source (docs/model.md).
 // A ParameterSet is the model's contiguous parameter vector plus that metadata; the
 // equations read values by index, users address them by name.
 #include <limits>

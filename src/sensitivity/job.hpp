@@ -1,11 +1,10 @@
 #pragma once
 // Everything `phasmid sensitivity CONFIG [-o OUT.h5] [--method forward|fd]` does once the
 // model is assembled: the options of the config's [sensitivity] section, the analysis, the
-// optional limit-cycle analysis, and the HDF5 file (DESIGN.md §3, docs/sensitivity.md).
+// optional limit-cycle analysis, and the HDF5 file (docs/hdf5.md, docs/sensitivity.md).
 #include <string>
 #include <vector>
 
-#include <toml++/toml.h>
 
 #include "io/h5_file.hpp"
 #include "sensitivity/floquet.hpp"
@@ -21,14 +20,6 @@ struct SensitivityJob {
   bool prc = false;      // phase response curve
   PrcOptions prc_options;
 };
-
-// Reads a [sensitivity] table (keys: parameters = [names], t_end_ms, output_dt_ms,
-// discard_ms, method = "forward"|"fd", trajectory = bool, fd_relative_step,
-// staggered = bool, floquet = bool, transient_ms, max_period_ms, prc_state = "name",
-// prc_amplitude, prc_phases, prc_cycles). Unknown keys and wrong types are errors naming
-// `origin` (e.g. the config file) and the line. Parameter names are checked against `model`.
-SensitivityJob parse_sensitivity_section(const toml::table& section, const model::OdeModel& model,
-                                         const std::string& origin, SensitivityJob defaults = {});
 
 struct SensitivityOutcome {
   SensitivityReport report;

@@ -1,5 +1,5 @@
 #pragma once
-// Forward sensitivity analysis of a model's trajectory and gait features (issue 4):
+// Forward sensitivity analysis of a model's trajectory and gait features (docs/sensitivity.md):
 // CVODES forward sensitivities (exact df/dp and J s from the templated right-hand side),
 // feature sensitivities from event times (implicit-function formula), normalised
 // sensitivities and a ranking per feature; or the same by central finite differences.

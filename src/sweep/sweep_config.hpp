@@ -9,7 +9,10 @@
 
 namespace phasmid::sweep {
 
-enum class Design { Grid, Lhs, Sobol };
+// Grid: the full factorial of the parameters' axes; Lhs, Sobol: `points` samples of the
+// parameters' ranges; OneAtATime: each parameter over its own axis with the others at their
+// base values (local stability ranges, e.g. Cruse's Table 1).
+enum class Design { Grid, Lhs, Sobol, OneAtATime };
 
 struct SweptParameter {
   std::string name;
@@ -17,6 +20,7 @@ struct SweptParameter {
   std::vector<double> values;  // grid: the axis' values (explicit, from lower/upper/points, or a column of rows)
   double lower = 0, upper = 0;
   bool log_scale = false;
+  double base = 0;             // the scenario's value (one_at_a_time holds it while others vary)
   std::size_t axis = 0;        // grid: parameters of one `names = [...]` table share an axis (linked values)
 };
 
@@ -30,7 +34,8 @@ struct SweptOption {
 
 struct SweepSpec {
   Design design = Design::Grid;
-  std::string design_name;  // "grid" | "lhs" | "sobol"
+  std::string design_name;  // "grid" | "lhs" | "sobol" | "one_at_a_time"
+  std::string range_feature;  // one_at_a_time: a 0/1 feature whose range of 1s per parameter is reported
   std::uint64_t seed = 0;
   std::vector<SweptParameter> parameters;
   std::vector<SweptOption> options;
@@ -50,6 +55,10 @@ struct SweepSpec {
   config::Config config_for(const config::Config& cfg, std::size_t combo) const;
   std::string describe_combo(std::size_t combo) const;  // e.g. "gait = tripod"
 };
+
+// Unit interval -> parameter value: linear in [lower, upper], or in log with log_scale;
+// clamped so that rounding never leaves [lower, upper]. Shared with gsa/sampling.
+double map_unit(const SweptParameter& p, double u);
 
 // Parses and validates [sweep] against the model's parameters (names, admissible ranges);
 // every error names file:line. t_end_ms / discard_ms default to [simulation]'s.

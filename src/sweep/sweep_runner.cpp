@@ -49,11 +49,9 @@ struct SignalGuard {
 
 // What rank 0 (or the only process) needs to run the point loop and write the result.
 struct MasterJob {
-  const config::Config& cfg;
+  const SweepInputs& in;
   const SweepOptions& opt;
-  const SweepSpec& spec;
-  const std::string& resolved;
-  const model::OdeModel& base_model;
+  const model::ParameterSet& base_parameters;
   const std::vector<double>& base_p;
   std::chrono::steady_clock::time_point wall0;
 };
@@ -63,9 +61,9 @@ std::unique_ptr<Journal> open_journal(const MasterJob& job, const std::string& p
   try {
     if (!job.opt.resume && std::filesystem::exists(path))
       throw Error(path + ": journal of an unfinished sweep; pass --resume to continue it, or delete it to start over");
-    std::uint64_t fingerprint = sweep_fingerprint(job.resolved, job.spec);
+    std::uint64_t fingerprint = sweep_fingerprint(job.in.resolved_config, job.in.spec);
     if (job.opt.shard.active()) fingerprint = shard_fingerprint(fingerprint, job.opt.shard);
-    return std::make_unique<Journal>(path, fingerprint, job.spec.n_points, job.opt.resume);
+    return std::make_unique<Journal>(path, fingerprint, job.in.spec.n_points, job.opt.resume);
   } catch (...) {
     dist::release_workers();
     throw;
@@ -74,25 +72,25 @@ std::unique_ptr<Journal> open_journal(const MasterJob& job, const std::string& p
 
 // The sweep file, or with --shard the shard file (its points' journal lines, for `merge`).
 void write_result(const MasterJob& job, std::vector<std::optional<PointResult>>& results) {
-  const io::RunInfo info{job.resolved, job.opt.command};
+  const io::RunInfo info{job.in.resolved_config, job.opt.command};
   if (job.opt.shard.active()) {
     std::vector<std::string> records;
     for (std::size_t i = 0; i < results.size(); ++i)
       if (results[i]) records.push_back(encode_record(i, *results[i]));
-    write_shard_h5(job.opt.output, job.cfg, job.opt.sets, job.spec, job.opt.shard, records, info);
+    write_shard_h5(job.opt.output, job.in, job.opt.shard, records, info);
     return;
   }
   std::vector<PointResult> all;
   all.reserve(results.size());
   for (auto& r : results) all.push_back(std::move(*r));
-  write_sweep_h5(job.opt.output, job.spec, all, job.base_model, job.base_p, info);
+  write_sweep_h5(job.opt.output, job.in.spec, all, job.base_parameters, job.base_p, info);
 }
 
 // The point loop on the master: hands the missing points (of its shard) to the executor,
 // journals and stores each result as it arrives, shows progress; writes the file when done.
 SweepOutcome run_master(const MasterJob& job, dist::Executor& exec, const dist::Evaluate& evaluate, SweepOutcome out) {
   const SweepOptions& opt = job.opt;
-  const SweepSpec& spec = job.spec;
+  const SweepSpec& spec = job.in.spec;
   std::unique_ptr<Journal> journal = open_journal(job, out.journal);
   std::vector<std::optional<PointResult>> results(spec.n_points);
   for (auto& [i, r] : journal->recovered()) results[i] = r;
@@ -151,20 +149,17 @@ std::string gait_class_of(const std::vector<features::Feature>& features) {
   return "ok";
 }
 
-PointResult evaluate_point(const model::OdeModel& model, const std::vector<double>& base_parameters,
+PointResult evaluate_point(const scenario::Scenario& scenario, const std::vector<double>& base_parameters,
                            const std::vector<std::size_t>& swept_indices, const SweepSpec& spec,
-                           std::size_t point, const solver::SolverOptions& solver_options) {
+                           std::size_t point, const scenario::RunSettings& settings) {
   PointResult r;
   try {
     std::vector<double> p = base_parameters;
     for (std::size_t d = 0; d < swept_indices.size(); ++d) p[swept_indices[d]] = spec.at(point, d);
-    solver::Simulator sim(model, solver_options);
-    // Features come from located events, so two output times suffice; CVODES steps the same
-    // way whatever the output grid (it interpolates to output times in CV_NORMAL mode).
-    solver::SolveResult res = sim.run(p, {0.0, spec.t_end_ms}, features::feature_roots(model, p));
-    features::FeatureOptions fo;
-    fo.discard_ms = spec.discard_ms;
-    r.features = features::compute_features(model, res, fo);
+    scenario::RunSettings s = settings;
+    s.t_end_ms = spec.t_end_ms;
+    s.discard_ms = spec.discard_ms;
+    r.features = scenario.evaluate_features(p, s);
     r.gait_class = gait_class_of(r.features);
   } catch (const std::exception& e) {  // SolverError, any phasmid::Error, or worse: recorded, not fatal
     r = PointResult{};
@@ -175,32 +170,22 @@ PointResult evaluate_point(const model::OdeModel& model, const std::vector<doubl
   return r;
 }
 
-SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& opt) {
+SweepOutcome run_sweep(const SweepInputs& in, const SweepOptions& opt) {
   const auto wall0 = std::chrono::steady_clock::now();
-  std::unique_ptr<model::OdeModel> base_model = config::build_model(cfg, opt.sets);
-  const config::SimulationSettings sim = config::simulation_settings(cfg);
-  const SweepSpec spec = parse_sweep(cfg, base_model->parameters(), sim);
-  const std::string resolved = config::resolved_config_text(cfg, opt.sets);
-  const std::vector<double> base_p = base_model->parameters().values();
-
-  // Per option combination: its config, base parameter vector and swept parameter indices.
-  std::vector<config::Config> combo_cfg;
+  const SweepSpec& spec = in.spec;
+  // Per option combination: its base parameter vector and swept parameter indices.
   std::vector<std::vector<double>> combo_p;
   std::vector<std::vector<std::size_t>> combo_swept;
+  std::unique_ptr<scenario::Scenario> base_scenario;
   for (std::size_t c = 0; c < spec.n_combos; ++c) {
-    combo_cfg.push_back(spec.config_for(cfg, c));
-    try {
-      auto m = config::build_model(combo_cfg.back(), opt.sets);
-      combo_p.push_back(m->parameters().values());
-      std::vector<std::size_t> idx;
-      for (auto& p : spec.parameters) idx.push_back(m->parameters().index(p.name));
-      combo_swept.push_back(std::move(idx));
-    } catch (const Error& e) {
-      std::string at;
-      for (std::size_t k = 0; k < spec.options.size(); ++k) at = spec.options[k].where[spec.option_value(c, k)];
-      throw Error(at + ": sweep option " + spec.describe_combo(c) + ": " + e.what());
-    }
+    auto s = in.make(c);
+    combo_p.push_back(s->parameters().values());
+    std::vector<std::size_t> idx;
+    for (auto& p : spec.parameters) idx.push_back(s->parameters().index(p.name));
+    combo_swept.push_back(std::move(idx));
+    if (c == 0) base_scenario = std::move(s);
   }
+  const std::vector<double>& base_p = combo_p.front();
 
   SweepOutcome out;
   out.n_points = spec.n_points;
@@ -210,13 +195,13 @@ SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& opt) {
   out.threads = exec->slots();
   out.executor = exec->describe();
   out.distributed = exec->distributed();
-  // One model per evaluation slot and option combination, built serially: slots share nothing
-  // but read-only inputs.
-  std::vector<std::vector<std::unique_ptr<model::OdeModel>>> models(exec->slots());
+  // One scenario per evaluation slot and option combination, built serially: slots share
+  // nothing but read-only inputs.
+  std::vector<std::vector<std::unique_ptr<scenario::Scenario>>> models(exec->slots());
   for (auto& per_slot : models)
-    for (std::size_t c = 0; c < spec.n_combos; ++c) per_slot.push_back(config::build_model(combo_cfg[c], opt.sets));
-  solver::SolverOptions so = sim.solver;
-  so.progress = false;
+    for (std::size_t c = 0; c < spec.n_combos; ++c) per_slot.push_back(in.make(c));
+  scenario::RunSettings so = in.settings;
+  so.solver.progress = false;
   // A point's result travels as its journal line (hex floats are exact; strings are normalised
   // to valid UTF-8), so the master stores exactly what a resumed sweep reads back.
   const dist::Evaluate evaluate = [&](const dist::Task& t, int slot) {
@@ -229,7 +214,7 @@ SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& opt) {
     return out;
   }
 
-  return run_master({cfg, opt, spec, resolved, *base_model, base_p, wall0}, *exec, evaluate, std::move(out));
+  return run_master({in, opt, base_scenario->parameters(), base_p, wall0}, *exec, evaluate, std::move(out));
 }
 
 }  // namespace phasmid::sweep

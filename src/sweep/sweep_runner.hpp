@@ -8,7 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "config/config.hpp"
+#include <functional>
+#include <memory>
+
+#include "scenario/scenario.hpp"
+
 #include "dist/executor.hpp"
 #include "sweep/sweep_shard.hpp"
 #include "sweep/sweep_store.hpp"
@@ -17,7 +21,6 @@ namespace phasmid::sweep {
 
 struct SweepOptions {
   std::string output = "sweep.h5";
-  std::vector<std::string> sets;  // --set NAME=VALUE, applied to every point before the swept values
   bool resume = false;            // continue from "<output>.journal"
   int threads = 0;                // 0: OpenMP's default (OMP_NUM_THREADS or the number of cores);
                                   // under MPI per worker rank, default OMP_NUM_THREADS or 1
@@ -44,13 +47,26 @@ struct SweepOutcome {
   std::string output, journal;
 };
 
-SweepOutcome run_sweep(const config::Config& cfg, const SweepOptions& options);
+// What a sweep runs: the design, a factory of the scenario of each option combination
+// (spec.options; called serially, once per combination and thread), how to run each point,
+// and the resolved config text (the journal's fingerprint and the file's `config` attribute).
+struct SweepInputs {
+  SweepSpec spec;
+  std::function<std::unique_ptr<scenario::Scenario>(std::size_t combo)> make;
+  scenario::RunSettings settings;
+  std::string resolved_config;
+  // The config as read and the --set overrides: a shard file keeps them for `phasmid merge`.
+  std::string config_text, config_path;
+  std::vector<std::string> sets;
+};
+
+SweepOutcome run_sweep(const SweepInputs& inputs, const SweepOptions& options);
 
 // One point: the base parameters with the swept ones replaced, simulated and reduced to
 // features. Never throws for a failing point: the reason goes into PointResult::status.
-PointResult evaluate_point(const model::OdeModel& model, const std::vector<double>& base_parameters,
+PointResult evaluate_point(const scenario::Scenario& scenario, const std::vector<double>& base_parameters,
                            const std::vector<std::size_t>& swept_indices, const SweepSpec& spec,
-                           std::size_t point, const solver::SolverOptions& solver_options);
+                           std::size_t point, const scenario::RunSettings& settings);
 
 // Gait class of a point from its features: the label of a `gait_class` feature if the model
 // provides one (see docs/sweep.md), else "ok".

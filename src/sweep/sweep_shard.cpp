@@ -5,6 +5,9 @@
 #include <optional>
 
 #include "common/error.hpp"
+#include "config/sweep_inputs.hpp"
+#include "config/toml_util.hpp"
+#include "sweep/sweep_runner.hpp"
 #include "sweep/sweep_store.hpp"
 
 namespace phasmid::sweep {
@@ -87,20 +90,19 @@ std::uint64_t shard_fingerprint(std::uint64_t sweep_fp, const Shard& shard) {
   return fnv1a("#shard " + shard_name(shard), sweep_fp);
 }
 
-void write_shard_h5(const std::string& output, const config::Config& cfg, const std::vector<std::string>& sets,
-                    const SweepSpec& spec, const Shard& shard, const std::vector<std::string>& records,
-                    const io::RunInfo& info) {
+void write_shard_h5(const std::string& output, const SweepInputs& in, const Shard& shard,
+                    const std::vector<std::string>& records, const io::RunInfo& info) {
   io::H5Writer w(output);
   w.write_run_info(info);
   w.ensure_group("/sweep_shard");
   if (!records.empty()) w.write("/sweep_shard/records", records);
-  w.write("/sweep_shard/config_text", std::vector<std::string>{cfg.text});
-  if (!sets.empty()) w.write("/sweep_shard/sets", sets);
-  w.set_attribute("/sweep_shard", "fingerprint", hex64(sweep_fingerprint(info.config_text, spec)));
-  w.set_attribute("/sweep_shard", "config_path", cfg.path);
+  w.write("/sweep_shard/config_text", std::vector<std::string>{in.config_text});
+  if (!in.sets.empty()) w.write("/sweep_shard/sets", in.sets);
+  w.set_attribute("/sweep_shard", "fingerprint", hex64(sweep_fingerprint(in.resolved_config, in.spec)));
+  w.set_attribute("/sweep_shard", "config_path", in.config_path);
   w.set_attribute("/sweep_shard", "shard", static_cast<double>(shard.index));
   w.set_attribute("/sweep_shard", "shards", static_cast<double>(shard.count));
-  w.set_attribute("/sweep_shard", "n_points", static_cast<double>(spec.n_points));
+  w.set_attribute("/sweep_shard", "n_points", static_cast<double>(in.spec.n_points));
   w.commit();
 }
 
@@ -111,11 +113,10 @@ MergeOutcome merge_shards(const std::vector<std::string>& parts, const std::stri
   const std::vector<std::string> seen = check_shards(shards);
   const ShardFile& first = shards.front();
   // The design and base parameters come from the config the shards ran, as in `phasmid sweep`.
-  const config::Config cfg = config::parse_config(first.config_text, first.config_path);
-  const auto model = config::build_model(cfg, first.sets);
-  const SweepSpec spec = parse_sweep(cfg, model->parameters(), config::simulation_settings(cfg));
-  const std::string resolved = config::resolved_config_text(cfg, first.sets);
-  if (hex64(sweep_fingerprint(resolved, spec)) != first.fingerprint)
+  const SweepInputs in =
+      config::sweep_inputs(config::parse_config(first.config_text, first.config_path), first.sets);
+  const SweepSpec& spec = in.spec;
+  if (hex64(sweep_fingerprint(in.resolved_config, spec)) != first.fingerprint)
     throw Error(first.path + ": its config no longer gives the sweep it was run with (another phasmid version?)");
   std::vector<std::optional<PointResult>> results(spec.n_points);
   MergeOutcome out;
@@ -131,7 +132,8 @@ MergeOutcome merge_shards(const std::vector<std::string>& parts, const std::stri
   refuse_missing(results, seen);
   std::vector<PointResult> all;
   for (auto& r : results) all.push_back(std::move(*r));
-  write_sweep_h5(output, spec, all, *model, model->parameters().values(), {resolved, command});
+  const auto base = in.make(0);
+  write_sweep_h5(output, spec, all, base->parameters(), base->parameters().values(), {in.resolved_config, command});
   out.n_points = spec.n_points;
   out.n_shards = shards.size();
   return out;

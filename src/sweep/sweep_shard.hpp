@@ -12,11 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "config/config.hpp"
 #include "io/h5_file.hpp"
 #include "sweep/sweep_config.hpp"
 
 namespace phasmid::sweep {
+
+struct SweepInputs;
 
 struct Shard {
   std::size_t index = 0, count = 0;  // count 0: the whole sweep
@@ -29,9 +30,8 @@ Shard parse_shard(const std::string& text);
 // The journal fingerprint of a shard: a journal of shard 1/4 does not resume shard 2/4.
 std::uint64_t shard_fingerprint(std::uint64_t sweep_fingerprint, const Shard& shard);
 
-void write_shard_h5(const std::string& output, const config::Config& cfg, const std::vector<std::string>& sets,
-                    const SweepSpec& spec, const Shard& shard, const std::vector<std::string>& records,
-                    const io::RunInfo& info);
+void write_shard_h5(const std::string& output, const SweepInputs& in, const Shard& shard,
+                    const std::vector<std::string>& records, const io::RunInfo& info);
 
 struct MergeOutcome {
   std::size_t n_points = 0, n_failed = 0, n_shards = 0;

@@ -17,6 +17,7 @@
 
 #include "common/error.hpp"
 #include "io/trajectory_writer.hpp"
+#include "sweep/ranges.hpp"
 
 namespace phasmid::sweep {
 namespace {
@@ -223,7 +224,7 @@ void Journal::close_and_remove() {
 }
 
 void write_sweep_h5(const std::string& output, const SweepSpec& spec, const std::vector<PointResult>& results,
-                    const model::OdeModel& model, const std::vector<double>& base_parameters,
+                    const model::ParameterSet& parameters, const std::vector<double>& base_parameters,
                     const io::RunInfo& info) {
   const std::size_t n = spec.n_points, dim = spec.parameters.size();
   if (results.size() != n) throw Error("internal: sweep results incomplete");
@@ -275,7 +276,12 @@ void write_sweep_h5(const std::string& output, const SweepSpec& spec, const std:
   w.set_attribute("/sweep", "n_failed", static_cast<double>(n_failed));
   w.set_attribute("/sweep", "t_end_ms", spec.t_end_ms);
   w.set_attribute("/sweep", "discard_ms", spec.discard_ms);
-  io::write_parameters(w, model, base_parameters);
+  if (!spec.range_feature.empty()) {
+    auto it = column.find(spec.range_feature);
+    std::vector<double> none(n, std::numeric_limits<double>::quiet_NaN());
+    write_ranges_h5(w, spec.range_feature, one_at_a_time_ranges(spec, it == column.end() ? none : fvalues[it->second]));
+  }
+  io::write_parameters(w, parameters, base_parameters);
   w.commit();
 }
 

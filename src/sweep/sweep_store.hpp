@@ -18,7 +18,7 @@
 
 #include "features/features.hpp"
 #include "io/h5_file.hpp"
-#include "model/ode_model.hpp"
+#include "model/parameters.hpp"
 #include "sweep/sweep_config.hpp"
 
 namespace phasmid::sweep {
@@ -68,7 +68,7 @@ class Journal {
 
 // Writes the /sweep group (and /parameters for the base point) to the final file.
 void write_sweep_h5(const std::string& output, const SweepSpec& spec, const std::vector<PointResult>& results,
-                    const model::OdeModel& model, const std::vector<double>& base_parameters,
+                    const model::ParameterSet& parameters, const std::vector<double>& base_parameters,
                     const io::RunInfo& info);
 
 }  // namespace phasmid::sweep

@@ -19,7 +19,7 @@ expect_error "missing config" "no such config" "$PHASMID" params "$tmp/missing.t
 printf '[model]\ntype = "leg"\nstart_ms = -5\n' >"$tmp/start.toml"
 expect_error "negative start_ms names file:line" "start.toml:3.*'start_ms' must be a number >= 0" "$PHASMID" params "$tmp/start.toml"
 printf '[model]\ntype = "three_legs"\nstart_ms = 100\n' >"$tmp/start3.toml"
-expect_error "start_ms on three legs names file:line" "start3.toml:3.*'start_ms' applies to type = \"leg\" only" "$PHASMID" params "$tmp/start3.toml"
+expect_error "start_ms on three legs names file:line" "start3.toml:3.*unknown key 'start_ms' in \[model\]" "$PHASMID" params "$tmp/start3.toml"
 printf '[model]\ntype = "three_legs"\ncoupling_gate = "always"\n' >"$tmp/gate.toml"
 expect_error "unknown coupling_gate names file:line and the choices" "gate.toml:3.*unknown coupling_gate 'always' (expected target_swing or source_contact)" \
   "$PHASMID" params "$tmp/gate.toml"

@@ -1,4 +1,4 @@
-# Sourced by CLI script tests: the error contract of DESIGN.md §3. Needs $tmp, $fail, $pass.
+# Sourced by CLI script tests: the error contract of docs/cli.md. Needs $tmp, $fail, $pass.
 # expect_error DESCRIPTION EXPECTED_SUBSTRING COMMAND...: the command must exit non-zero with
 # exactly one line on stderr containing EXPECTED_SUBSTRING.
 expect_error() {

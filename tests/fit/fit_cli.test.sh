@@ -21,7 +21,7 @@ expect_error "malformed TSV names file:line" "bad.tsv:2" \
 printf 'parameterId\tparameterScale\tlowerBound\tupperBound\tnominalValue\testimate\nmiddle.fti.bv\tlin\t1\t50\t12.5\t1\n' >"$tmp/unk.tsv"
 expect_error "unknown parameter named" "unknown parameter 'middle.fti.bv'" \
   "$PHASMID" fit "$SRC/configs/fti_mechanical.toml" --data "$DATA" --parameters "$tmp/unk.tsv" -o "$tmp/c.h5" -q
-expect_error "unknown optimizer" "unknown NLopt algorithm" \
+expect_error "unknown optimizer" "unknown optimizer 'nlopt:FOO' (expected one of ceres, nlopt:BOBYQA" \
   "$PHASMID" fit "$SRC/configs/fti_mechanical.toml" --data "$DATA" --parameters "$PARAMS" --optimizer nlopt:FOO -o "$tmp/d.h5" -q
 expect_error "no targets" "no targets" "$PHASMID" fit "$SRC/configs/fti_mechanical.toml" --parameters "$PARAMS" -o "$tmp/e.h5" -q
 echo "$pass passed, $fail failed"

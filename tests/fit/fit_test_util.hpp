@@ -2,10 +2,12 @@
 // Shared by the fit tests: a synthetic FTi recording generated with phasmid (Section 3.1
 // mechanics, prescribed 1:1 switching, period 500 ms) with known parameters and noise.
 #include <cmath>
+#include <functional>
 #include <map>
 #include <random>
 #include <string>
 
+#include "common/error.hpp"
 #include "config/config.hpp"
 #include "fit/fit_config.hpp"
 #include "fit/fit_problem.hpp"
@@ -16,6 +18,16 @@
 namespace phasmid::fittest {
 
 inline std::string source(const std::string& rel) { return std::string(PHASMID_SOURCE_DIR) + "/" + rel; }
+
+// The message of the phasmid::Error that f throws; "" if it throws none.
+inline std::string error_message(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
 
 inline const std::vector<std::string>& fti_names() {
   static const std::vector<std::string> n = {"middle.fti.k_E.flexion", "middle.fti.k_F.flexion", "middle.fti.k_E.extension",

@@ -36,11 +36,12 @@ TEST(Backends, EveryNloptAlgorithmRunsAndLocalOnesFindTheOptimum) {
   fit::OptimizerOptions co;
   auto ref = fit::optimize(*f.problem, f.problem->start(), co);
   ASSERT_TRUE(ref.converged);
-  for (const std::string& a : fit::nlopt_algorithms()) {
-    SCOPED_TRACE(a);
+  for (const fit::OptimizerInfo& a : fit::optimizers()) {
+    if (a.backend != fit::Backend::NLopt) continue;
+    SCOPED_TRACE(a.name);
     fit::OptimizerOptions o;
-    fit::parse_optimizer("nlopt:" + a, o);
-    const bool global = a == "DIRECT_L" || a == "CRS2_LM" || a == "ISRES" || a == "MLSL";
+    fit::parse_optimizer(a.name, o);
+    const bool global = a.global;
     o.max_evaluations = global ? 500 : 1000;
     o.function_tolerance = 1e-10;
     o.parameter_tolerance = 1e-8;

@@ -9,6 +9,7 @@
 #include "common/error.hpp"
 #include "model/mechanical_joint_model.hpp"
 #include "sensitivity/job.hpp"
+#include "config/sensitivity_section.hpp"
 
 using namespace phasmid;
 
@@ -27,7 +28,7 @@ transient_ms = 1500
 max_period_ms = 600
 tolerance_factor = 10
 )");
-  auto job = sensitivity::parse_sensitivity_section(*tbl["sensitivity"].as_table(), m, "test.toml");
+  auto job = config::parse_sensitivity_section(*tbl["sensitivity"].as_table(), m, "test.toml");
   EXPECT_EQ(job.options.parameters.size(), 4u);
   EXPECT_DOUBLE_EQ(job.options.t_end_ms, 2500);
   EXPECT_FALSE(job.options.write_trajectory);
@@ -60,7 +61,7 @@ TEST(SensitivityJob, ErrorsNameFileLineAndKey) {
   auto expect_error = [&](const char* text, const std::string& needle) {
     auto tbl = toml::parse(text);
     try {
-      sensitivity::parse_sensitivity_section(*tbl["sensitivity"].as_table(), m, "cfg.toml");
+      config::parse_sensitivity_section(*tbl["sensitivity"].as_table(), m, "cfg.toml");
       ADD_FAILURE() << "no error for " << text;
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();

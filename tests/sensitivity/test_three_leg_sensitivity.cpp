@@ -8,6 +8,7 @@
 
 #include "config/config.hpp"
 #include "sensitivity/job.hpp"
+#include "config/sensitivity_section.hpp"
 #include "build_info.hpp"
 
 using namespace phasmid;
@@ -21,7 +22,7 @@ TEST(ThreeLegSensitivity, ExampleConfigRunsWithForwardGradientsForEveryJoint) {
   defaults.options.output_dt_ms = sim.output_dt_ms;
   defaults.options.discard_ms = sim.discard_ms;
   defaults.options.solver = sim.solver;
-  auto job = sensitivity::parse_sensitivity_section(*cfg.table["sensitivity"].as_table(), *m, cfg.path, defaults);
+  auto job = config::parse_sensitivity_section(*cfg.table["sensitivity"].as_table(), *m, cfg.path, defaults);
   ASSERT_EQ(job.options.parameters.size(), 4u);
   const auto p = m->parameters().values();
   auto out = sensitivity::run_sensitivity_job(*m, p, job);

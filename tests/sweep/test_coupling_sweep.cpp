@@ -14,7 +14,7 @@
 #include <filesystem>
 
 #include "common/error.hpp"
-#include "config/config.hpp"
+#include "config/sweep_inputs.hpp"
 #include "io/h5_file.hpp"
 #include "sweep/sweep_runner.hpp"
 #include "build_info.hpp"
@@ -57,7 +57,7 @@ TEST(CouplingSweep, WeakInhibitionGivesTetrapodAndTripod) {
   sweep::SweepOptions o;
   o.output = (dir / "coupling.h5").string();
   o.progress = false;
-  auto r = sweep::run_sweep(cfg, o);
+  auto r = sweep::run_sweep(config::sweep_inputs(cfg, {}), o);
   ASSERT_TRUE(r.complete);
   ASSERT_EQ(r.n_points, 4u);
 

@@ -15,7 +15,7 @@
 #include <thread>
 
 #include "common/error.hpp"
-#include "config/config.hpp"
+#include "config/sweep_inputs.hpp"
 #include "io/h5_file.hpp"
 #include "sweep/sweep_runner.hpp"
 #include "build_info.hpp"
@@ -67,7 +67,7 @@ sweep::SweepOutcome run(const config::Config& cfg, const fs::path& out, int thre
   o.stop_after = stop_after;
   o.progress = false;
   o.command = "test";
-  return sweep::run_sweep(cfg, o);
+  return sweep::run_sweep(config::sweep_inputs(cfg, {}), o);
 }
 
 bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {

@@ -1,0 +1,25 @@
+#include "app/write_output.hpp"
+
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "app/verb.hpp"
+
+namespace phasmid::app {
+
+void write_run_file(io::H5Writer& w, const config::Config& cfg, const std::vector<std::string>& sets,
+                    const scenario::Scenario& scenario) {
+  w.write_run_info({config::resolved_config_text(cfg, sets), command_line()});
+  w.set_attribute("/", "model", scenario.kind());
+}
+
+void print_features_json(const std::vector<features::Feature>& features) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& f : features)
+    out.push_back({{"name", f.name}, {"value", std::isfinite(f.value) ? nlohmann::json(f.value) : nlohmann::json()},
+                   {"unit", f.unit}});
+  std::cout << out.dump(2) << "\n";
+}
+
+}  // namespace phasmid::app

@@ -1,0 +1,19 @@
+#pragma once
+// What every verb writes the same way: the root attributes of an output file (the resolved
+// config, the command line, the model kind) and features as JSON.
+#include <string>
+#include <vector>
+
+#include "config/config.hpp"
+#include "features/features.hpp"
+#include "io/h5_file.hpp"
+
+namespace phasmid::app {
+
+// Root attributes phasmid_version, created, config (with the --set overrides), command, model.
+void write_run_file(io::H5Writer& w, const config::Config& cfg, const std::vector<std::string>& sets,
+                    const scenario::Scenario& scenario);
+// A JSON list of {name, value, unit} on stdout (null for values that are not finite).
+void print_features_json(const std::vector<features::Feature>& features);
+
+}  // namespace phasmid::app

@@ -1,0 +1,123 @@
+#include "config/toml_util.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/embedded.hpp"
+#include "common/error.hpp"
+
+namespace phasmid::config {
+namespace fs = std::filesystem;
+
+std::string where(const std::string& origin, const toml::node& node) {
+  auto line = node.source().begin.line;
+  return origin + (line ? ":" + std::to_string(line) : "");
+}
+
+std::string where(const Config& cfg, const toml::node& node) { return where(cfg.path, node); }
+
+std::string text(const Config& cfg, const toml::node& node, const std::string& key) {
+  if (auto v = node.value<std::string>()) return *v;
+  throw Error(where(cfg, node) + ": '" + key + "' must be a string");
+}
+
+double number(const Config& cfg, const toml::node& node, const std::string& key) {
+  if (auto v = node.value<double>()) return *v;
+  throw Error(where(cfg, node) + ": '" + key + "' must be a number");
+}
+
+bool boolean(const Config& cfg, const toml::node& node, const std::string& key) {
+  if (auto v = node.value<bool>()) return *v;
+  if (auto v = node.value<int64_t>(); v && (*v == 0 || *v == 1)) return *v == 1;
+  throw Error(where(cfg, node) + ": '" + key + "' must be true or false");
+}
+
+namespace {
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+}  // namespace
+
+std::string nearest(const std::string& word, const std::vector<std::string>& candidates) {
+  std::string best;
+  size_t best_d = std::max<size_t>(2, word.size() / 3) + 1;  // closer than this counts as a typo
+  for (const auto& c : candidates) {
+    size_t d = edit_distance(word, c);
+    if (d < best_d) best_d = d, best = c;
+  }
+  return best;
+}
+
+void check_keys(const Config& cfg, const toml::table& t, const std::string& section,
+                const std::set<std::string>& allowed) {
+  for (auto& [k, v] : t) {
+    const std::string key(k.str());
+    if (allowed.count(key)) continue;
+    std::string list;
+    for (auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+    const std::string near = nearest(key, {allowed.begin(), allowed.end()});
+    throw Error(where(cfg, v) + ": unknown key '" + key + "' in [" + section + "]" +
+                (near.empty() ? "" : " (did you mean '" + near + "'?)") + " (allowed: " + list + ")");
+  }
+}
+
+namespace {
+void flatten_into(const toml::table& t, const std::string& prefix,
+                  std::vector<std::pair<std::string, const toml::node*>>& out) {
+  for (auto& [k, v] : t) {
+    std::string name = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
+    if (auto sub = v.as_table()) flatten_into(*sub, name, out);
+    else out.emplace_back(name, &v);
+  }
+}
+}  // namespace
+
+std::vector<std::pair<std::string, const toml::node*>> flatten(const toml::table& table) {
+  std::vector<std::pair<std::string, const toml::node*>> out;
+  flatten_into(table, "", out);
+  return out;
+}
+
+Config parse_config(const std::string& text, const std::string& origin) {
+  Config cfg;
+  cfg.path = origin;
+  cfg.text = text;
+  try {
+    cfg.table = toml::parse(text, origin);
+  } catch (const toml::parse_error& e) {
+    throw Error(origin + ":" + std::to_string(e.source().begin.line) + ": malformed config: " +
+                std::string(e.description()));
+  }
+  return cfg;
+}
+
+Config load_config(const std::string& path) {
+  if (fs::exists(path)) {
+    std::ifstream in(path);
+    if (!in) throw Error(path + ": cannot read config");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return parse_config(ss.str(), path);
+  }
+  const auto& files = embedded::files();
+  for (const std::string& key : {path, "configs/" + path, "configs/" + path + ".toml"}) {
+    auto it = files.find(key);
+    if (it != files.end()) return parse_config(it->second, "embedded:" + key);
+  }
+  throw Error(path + ": no such config file");
+}
+
+}  // namespace phasmid::config

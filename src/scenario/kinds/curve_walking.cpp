@@ -1,0 +1,16 @@
+// Model kind "curve_walking": the two middle legs walking a curve (model/leg_network.hpp,
+// docs/walking_model.md).
+#include "model/leg_network.hpp"
+#include "scenario/kinds/network_keys.hpp"
+#include "scenario/ode_scenario.hpp"
+
+namespace phasmid::scenario {
+
+ModelKind curve_walking_kind() {
+  return {"curve_walking", "the left and right middle legs walking a curve (Section 2.5.3)", {"motoneuron"},
+          [](const ModelSection& s) -> std::unique_ptr<Scenario> {
+            return std::make_unique<OdeScenario>(model::build_curve_walking_model(kinds::motoneuron_key(s)));
+          }};
+}
+
+}  // namespace phasmid::scenario

@@ -1,0 +1,70 @@
+#include "scenario/registry.hpp"
+
+#include "common/error.hpp"
+
+namespace phasmid::scenario {
+
+#define PHASMID_MODEL_KIND(factory) ModelKind factory();
+#include "scenario/kinds/builtin_kinds.def"
+#undef PHASMID_MODEL_KIND
+
+namespace {
+std::vector<ModelKind>& registry() {
+  static std::vector<ModelKind> kinds = [] {
+    std::vector<ModelKind> k;
+#define PHASMID_MODEL_KIND(factory) k.push_back(factory());
+#include "scenario/kinds/builtin_kinds.def"
+#undef PHASMID_MODEL_KIND
+    return k;
+  }();
+  return kinds;
+}
+}  // namespace
+
+const std::vector<ModelKind>& model_kinds() { return registry(); }
+
+RegisterModelKind::RegisterModelKind(ModelKind kind) { registry().push_back(std::move(kind)); }
+
+const ModelKind& model_kind(const std::string& name) {
+  std::vector<std::string> names;
+  for (const ModelKind& k : registry()) {
+    if (k.name == name) return k;
+    names.push_back(k.name);
+  }
+  std::string list, near = config::nearest(name, names);
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  throw Error("unknown model type '" + name + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+              "; the model types are " + list);
+}
+
+std::string ModelSection::where(const std::string& key) const {
+  const toml::node* n = node(key);
+  return n ? config::where(cfg_, *n) : config::where(cfg_, table_);
+}
+
+std::string ModelSection::text(const std::string& key, const std::string& fallback) const {
+  const toml::node* n = node(key);
+  return n ? config::text(cfg_, *n, key) : fallback;
+}
+
+double ModelSection::number(const std::string& key, double fallback) const {
+  const toml::node* n = node(key);
+  return n ? config::number(cfg_, *n, key) : fallback;
+}
+
+bool ModelSection::boolean(const std::string& key, bool fallback) const {
+  const toml::node* n = node(key);
+  return n ? config::boolean(cfg_, *n, key) : fallback;
+}
+
+std::string ModelSection::choice(const std::string& key, const std::string& fallback,
+                                 const std::vector<std::string>& allowed) const {
+  std::string v = text(key, fallback), list;
+  for (const auto& a : allowed) {
+    if (a == v) return v;
+    list += (list.empty() ? "\"" : ", \"") + a + "\"";
+  }
+  throw Error(where(key) + ": " + key + " must be one of " + list + " (got \"" + v + "\")");
+}
+
+}  // namespace phasmid::scenario
