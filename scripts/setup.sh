@@ -9,6 +9,7 @@ PACKAGES=(
   libsundials-dev libceres-dev libnlopt-cxx-dev libnlopt-dev libeigen3-dev libhdf5-dev
   libtomlplusplus-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev fonts-liberation
+  libopenmpi-dev openmpi-bin hdf5-tools
 )
 # Report tests render the HTML reports in a real browser.
 if [ "${PHASMID_WITH_BROWSER:-1}" = 1 ]; then PACKAGES+=(chromium); fi

@@ -5,6 +5,8 @@
 #include "app/verb.hpp"
 #include "common/error.hpp"
 #include "build_info.hpp"
+#include "dist/executor.hpp"
+#include "dist/session.hpp"
 
 namespace phasmid::app {
 std::vector<Verb>& verbs() {
@@ -15,12 +17,28 @@ static std::string g_command_line;
 const std::string& command_line() { return g_command_line; }
 }  // namespace phasmid::app
 
+namespace {
+// Under mpirun every rank runs the verb; rank 0 reports errors, other ranks name themselves.
+std::string error_prefix() {
+  const int r = phasmid::dist::rank();
+  return r == 0 ? "phasmid: " : "phasmid (rank " + std::to_string(r) + "): ";
+}
+
+// A rank that fails while others may wait for it ends the whole MPI job.
+int failed(int code) {
+  std::cerr.flush();
+  if (phasmid::dist::size() > 1 && !phasmid::dist::workers_released()) phasmid::dist::abort_job(code);
+  return code;
+}
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace phasmid::app;
+  phasmid::dist::Session mpi(argc, argv);
   for (int i = 0; i < argc; ++i) g_command_line += (i ? " " : "") + std::string(argv[i]);
 
   CLI::App app{"phasmid: simulation, sensitivities, fits and sweeps of the stick-insect walking model"};
-  app.set_version_flag("--version", PHASMID_VERSION);
+  app.set_version_flag("--version", std::string(PHASMID_VERSION) + " (" + phasmid::dist::mpi_description() + ")");
   app.require_subcommand(1);
   std::function<int()> action;
   for (auto& verb : verbs()) {
@@ -33,13 +51,20 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  const std::string verb = app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name();
+  if (phasmid::dist::size() > 1 && verb != "sweep" && verb != "fit") {  // every rank would write the same file
+    if (phasmid::dist::rank() == 0)
+      std::cerr << "phasmid: error: phasmid " << verb << " runs in one process; under mpirun only sweep and fit use "
+                << "several ranks (docs/cluster.md)\n";
+    return 1;
+  }
   try {
     return action ? action() : 1;
   } catch (const phasmid::Error& e) {
-    std::cerr << "phasmid: error: " << e.what() << "\n";
-    return 1;
+    std::cerr << error_prefix() << "error: " << e.what() << "\n";
+    return failed(1);
   } catch (const std::exception& e) {
-    std::cerr << "phasmid: internal error: " << e.what() << "\n";
-    return 2;
+    std::cerr << error_prefix() << "internal error: " << e.what() << "\n";
+    return failed(2);
   }
 }

@@ -20,7 +20,8 @@ inline void add_quiet(CLI::App& sub, bool& quiet) {
   sub.add_flag("-q,--quiet", quiet, "no progress line or summary on stderr");
 }
 inline void add_threads(CLI::App& sub, int& threads) {
-  sub.add_option("-j,--threads", threads, "worker threads (default: OMP_NUM_THREADS or all cores)")
+  sub.add_option("-j,--threads", threads,
+                 "worker threads (default: OMP_NUM_THREADS or all cores; per rank under mpirun: OMP_NUM_THREADS or 1)")
       ->check(CLI::NonNegativeNumber);
 }
 inline void add_json(CLI::App& sub, bool& json) { sub.add_flag("--json", json, "print the results as JSON on stdout"); }

@@ -1,5 +1,5 @@
 // phasmid fit CONFIG [--data KIN.csv] [--parameters PARAMS.tsv] [--optimizer ceres|nlopt:NAME]
-//                    [--multistart N] [-o OUT.h5]   (docs/fit.md)
+//                    [--multistart N] [-o OUT.h5]   (docs/fit.md; under mpirun: docs/cluster.md)
 // Exit status: 0 converged, 3 finished without convergence (result written, summary says why),
 // 1 bad input (one line on stderr).
 #include <iostream>
@@ -8,6 +8,8 @@
 #include "app/verb.hpp"
 #include "app/write_output.hpp"
 #include "config/config.hpp"
+#include "dist/executor.hpp"
+#include "dist/session.hpp"
 #include "fit/fit_config.hpp"
 #include "fit/fit_run.hpp"
 #include "io/h5_file.hpp"
@@ -30,6 +32,10 @@ int run_fit_verb(const FitArgs& a) {
   auto problem = scenario->make_fit(cfg, a.ov, spec);
   spec.optimizer.progress = !a.quiet;
   if (!a.profile.empty()) spec.profile = a.profile;
+  if (dist::rank() != 0) {  // an MPI worker: evaluates starts and profiles for rank 0
+    fit::run_fit(*problem, spec);
+    return 0;
+  }
   io::H5Writer w(a.out);  // opened before the work so an unwritable path fails early
   fit::FitResult result = fit::run_fit(*problem, spec);
   write_run_file(w, cfg, a.sets, *scenario);
@@ -37,6 +43,8 @@ int run_fit_verb(const FitArgs& a) {
   w.commit();
   const fit::FitSummary& b = result.best();
   if (!a.quiet) std::cerr << fit::format_result(*problem, result) << "phasmid fit: -> " << a.out << "\n";
+  if (!a.quiet && dist::size() > 1)
+    std::cerr << "phasmid fit: starts per rank\n" << dist::format_work_summary(result.multistart.work, "starts");
   if (!b.converged) {
     std::cerr << "phasmid fit: " << (b.usable ? "did not converge" : "failed") << " (" << b.termination
               << (b.message.empty() ? "" : ": " + b.message) << "); results in " << a.out << "\n";

@@ -1,4 +1,4 @@
-// phasmid sweep CONFIG [-o OUT.h5] [--resume] [--set NAME=VALUE ...] [-j THREADS] [-q]
+// [mpirun -np N] phasmid sweep CONFIG [-o OUT.h5] [--resume] [--shard i/N] [--set NAME=VALUE ...] [-j THREADS] [-q]
 #include <fmt/format.h>
 
 #include <cmath>
@@ -8,6 +8,7 @@
 #include "app/options.hpp"
 #include "app/verb.hpp"
 #include "config/sweep_inputs.hpp"
+#include "dist/executor.hpp"
 #include "io/h5_file.hpp"
 #include "sweep/ranges.hpp"
 #include "sweep/sweep_runner.hpp"
@@ -17,6 +18,7 @@ namespace {
 struct SweepArgs {
   std::string config, out = "sweep.h5";
   std::vector<std::string> sets;
+  std::string shard;
   bool resume = false, quiet = false, json = false;
   int threads = 0;
   long stop_after = -1;
@@ -49,21 +51,24 @@ int run(const SweepArgs& a) {
   o.resume = a.resume;
   o.threads = a.threads;
   o.stop_after = a.stop_after;
+  if (!a.shard.empty()) o.shard = sweep::parse_shard(a.shard);
   o.progress = !a.quiet;
   o.handle_signals = true;
   o.command = command_line();
   sweep::SweepOutcome r = sweep::run_sweep(config::sweep_inputs(cfg, a.sets), o);
+  if (r.worker) return 0;  // MPI worker rank: rank 0 reports
   if (!r.complete) {
     std::cerr << "phasmid sweep: " << (r.signal ? "interrupted" : "stopped") << " with "
               << (r.n_recovered + r.n_computed) << " of " << r.n_points << " points done (kept in " << r.journal
-              << "); continue with: phasmid sweep " << a.config << " -o " << a.out << " --resume\n";
+              << "); continue with: " << (r.distributed ? "mpirun ... " : "") << "phasmid sweep " << a.config << " -o "
+              << a.out << (a.shard.empty() ? "" : " --shard " + a.shard) << " --resume\n";
     return r.signal ? 128 + r.signal : 3;
   }
-  print_ranges(r.output, a.json);
+  if (a.shard.empty()) print_ranges(r.output, a.json);
   if (!a.quiet)
-    std::cerr << "phasmid sweep: " << r.n_points << " points (" << r.n_failed << " failed, " << r.n_recovered
-              << " resumed) on " << r.threads << " thread" << (r.threads == 1 ? "" : "s") << " in " << r.wall_seconds
-              << " s -> " << r.output << "\n";
+    std::cerr << "phasmid sweep: " << r.n_points << " points" << (a.shard.empty() ? "" : " of shard " + a.shard) << " (" << r.n_failed << " failed, " << r.n_recovered
+              << " resumed) on " << r.executor << " in " << r.wall_seconds << " s -> " << r.output << "\n";
+  if (!a.quiet && r.distributed) std::cerr << "phasmid sweep: work per rank\n" << dist::format_work_summary(r.work, "points");
   return 0;
 }
 
@@ -73,6 +78,8 @@ const RegisterVerb reg{{"sweep", "Run every point of a parameter sweep ([sweep] 
                           add_config_arg(sub, a->config, "scenario config (TOML) with a [sweep] section");
                           add_output(sub, a->out, "sweep.h5");
                           sub.add_flag("--resume", a->resume, "continue an interrupted sweep from OUT.h5.journal");
+                          sub.add_option("--shard", a->shard,
+                                         "i/N: only points with index i modulo N, written as a shard for `phasmid merge`");
                           add_sets(sub, a->sets);
                           add_threads(sub, a->threads);
                           sub.add_option("--stop-after", a->stop_after,

@@ -10,6 +10,9 @@ sweep::SweepInputs sweep_inputs(const Config& cfg, const std::vector<std::string
   in.settings = simulation_settings(cfg, base.get());
   in.spec = sweep::parse_sweep(cfg, base->parameters(), in.settings);
   in.resolved_config = resolved_config_text(cfg, sets);
+  in.config_text = cfg.text;
+  in.config_path = cfg.path;
+  in.sets = sets;
   in.make = [cfg, sets, spec = in.spec](std::size_t combo) {
     try {
       return build_scenario(spec.config_for(cfg, combo), sets);

@@ -1,6 +1,8 @@
 #pragma once
 // A whole fit as `phasmid fit` runs it: multistart optimisation, uncertainty at the best
-// optimum, profile likelihoods; and the HDF5 layout of the result (docs/fit.md).
+// optimum, profile likelihoods; and the HDF5 layout of the result (docs/fit.md). Starts and
+// profile halves are tasks of a dist::Executor: OpenMP threads, or MPI ranks under mpirun
+// (every rank calls run_fit; rank 0 gets the result, docs/cluster.md).
 #include <string>
 #include <vector>
 
@@ -19,6 +21,7 @@ struct FitResult {
   std::vector<Profile> profiles;
   const FitSummary& best() const { return multistart.runs.at(multistart.best); }
   std::vector<double> estimate;  // linear scale
+  bool worker = false;           // this rank was an MPI worker: the result is on rank 0
 };
 
 // Never throws for a failing fit (the summaries say why); throws Error for bad input

@@ -76,11 +76,8 @@ Uncertainty estimate_uncertainty(const ResidualProblem& problem, const std::vect
   return u;
 }
 
-Profile profile_likelihood(const ResidualProblem& problem, const std::vector<double>& x_opt, double cost_opt, size_t j,
-                           double sigma2, const Eigen::VectorXd& se_scaled, size_t points, double span,
-                           OptimizerOptions o) {
-  Profile pr;
-  pr.parameter = problem.estimated().at(j).id;
+std::vector<double> profile_grid(const ResidualProblem& problem, const std::vector<double>& x_opt, size_t j,
+                                 const Eigen::VectorXd& se_scaled, size_t points, double span) {
   const auto lo = problem.lower(), hi = problem.upper();
   if (points < 3) points = 3;
   if (points % 2 == 0) ++points;
@@ -94,30 +91,52 @@ Profile profile_likelihood(const ResidualProblem& problem, const std::vector<dou
   for (size_t i = 0; i < half; ++i) grid[i] = a + (x_opt[j] - a) * i / half;
   grid[half] = x_opt[j];
   for (size_t i = 1; i <= half; ++i) grid[half + i] = x_opt[j] + (b - x_opt[j]) * i / half;
+  return grid;
+}
+
+Profile empty_profile(const ResidualProblem& problem, size_t j, size_t points) {
+  Profile pr;
+  pr.parameter = problem.estimated().at(j).id;
   pr.values.resize(points);
   pr.cost.assign(points, kNaN);
   pr.delta_chi2.assign(points, kNaN);
   pr.converged.assign(points, 0);
+  return pr;
+}
+
+std::vector<size_t> profile_side(int dir, size_t points) {
+  const size_t half = points / 2;
+  std::vector<size_t> idx;
+  for (size_t step = (dir < 0 ? 0 : 1); step <= half; ++step) idx.push_back(dir < 0 ? half - step : half + step);
+  return idx;
+}
+
+void profile_walk(const ResidualProblem& problem, const std::vector<double>& x_opt, double cost_opt, size_t j,
+                  double sigma2, const std::vector<double>& grid, int dir, OptimizerOptions o, Profile& pr) {
   o.method = "ceres";  // profiles re-optimise with exact Jacobians and held parameters
   o.fixed = {j};
   o.progress = false;
   const double s2 = std::isfinite(sigma2) && sigma2 > 0 ? sigma2 : 1.0;
-  // Walk outward from the optimum, warm-starting each point from its neighbour.
-  for (int dir : {-1, +1}) {
-    std::vector<double> x = x_opt;
-    for (size_t step = (dir < 0 ? 0 : 1); step <= half; ++step) {
-      const size_t i = dir < 0 ? half - step : half + step;
-      x[j] = grid[i];
-      FitSummary s = optimize(problem, x, o);
-      pr.values[i] = from_scaled(problem.estimated()[j].scale, grid[i]);
-      if (s.usable) {
-        pr.cost[i] = s.final_cost;
-        pr.delta_chi2[i] = 2.0 * (s.final_cost - cost_opt) / s2;
-        pr.converged[i] = s.converged ? 1 : 0;
-        x = s.x;
-      }
+  std::vector<double> x = x_opt;
+  for (size_t i : profile_side(dir, grid.size())) {
+    x[j] = grid[i];
+    FitSummary s = optimize(problem, x, o);
+    pr.values[i] = from_scaled(problem.estimated()[j].scale, grid[i]);
+    if (s.usable) {
+      pr.cost[i] = s.final_cost;
+      pr.delta_chi2[i] = 2.0 * (s.final_cost - cost_opt) / s2;
+      pr.converged[i] = s.converged ? 1 : 0;
+      x = s.x;
     }
   }
+}
+
+Profile profile_likelihood(const ResidualProblem& problem, const std::vector<double>& x_opt, double cost_opt, size_t j,
+                           double sigma2, const Eigen::VectorXd& se_scaled, size_t points, double span,
+                           OptimizerOptions o) {
+  const std::vector<double> grid = profile_grid(problem, x_opt, j, se_scaled, points, span);
+  Profile pr = empty_profile(problem, j, grid.size());
+  for (int dir : {-1, +1}) profile_walk(problem, x_opt, cost_opt, j, sigma2, grid, dir, o, pr);
   return pr;
 }
 

@@ -45,4 +45,14 @@ Profile profile_likelihood(const ResidualProblem& problem, const std::vector<dou
                            double sigma2, const Eigen::VectorXd& se_scaled, size_t points, double span,
                            OptimizerOptions options);
 
+// The pieces of profile_likelihood, for running its two halves as separate tasks: each half
+// walks outward from the optimum, warm-starting each point from its neighbour, and depends
+// only on the optimum and the grid, so the halves give the same numbers wherever they run.
+std::vector<double> profile_grid(const ResidualProblem& problem, const std::vector<double>& x_opt, size_t j,
+                                 const Eigen::VectorXd& se_scaled, size_t points, double span);  // scaled
+Profile empty_profile(const ResidualProblem& problem, size_t j, size_t points);
+std::vector<size_t> profile_side(int dir, size_t points);  // grid indices of a half: -1 below and at the optimum, +1 above
+void profile_walk(const ResidualProblem& problem, const std::vector<double>& x_opt, double cost_opt, size_t j,
+                  double sigma2, const std::vector<double>& grid, int dir, OptimizerOptions options, Profile& pr);
+
 }  // namespace phasmid::fit

@@ -1,20 +1,17 @@
 #include "sweep/sweep_runner.hpp"
 
-#include <omp.h>
-
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
-#include <exception>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <optional>
 
 #include "common/error.hpp"
+#include "dist/executor.hpp"
 #include "solver/simulator.hpp"
 #include "sweep/progress.hpp"
+#include "sweep/sweep_shard.hpp"
 
 namespace phasmid::sweep {
 namespace {
@@ -48,6 +45,97 @@ struct SignalGuard {
     sigaction(SIGTERM, &old_term, nullptr);
   }
 };
+
+
+// What rank 0 (or the only process) needs to run the point loop and write the result.
+struct MasterJob {
+  const SweepInputs& in;
+  const SweepOptions& opt;
+  const model::ParameterSet& base_parameters;
+  const std::vector<double>& base_p;
+  std::chrono::steady_clock::time_point wall0;
+};
+
+// Opens (or resumes) the journal; on an MPI master, a refusal also ends the workers' wait.
+std::unique_ptr<Journal> open_journal(const MasterJob& job, const std::string& path) {
+  try {
+    if (!job.opt.resume && std::filesystem::exists(path))
+      throw Error(path + ": journal of an unfinished sweep; pass --resume to continue it, or delete it to start over");
+    std::uint64_t fingerprint = sweep_fingerprint(job.in.resolved_config, job.in.spec);
+    if (job.opt.shard.active()) fingerprint = shard_fingerprint(fingerprint, job.opt.shard);
+    return std::make_unique<Journal>(path, fingerprint, job.in.spec.n_points, job.opt.resume);
+  } catch (...) {
+    dist::release_workers();
+    throw;
+  }
+}
+
+// The sweep file, or with --shard the shard file (its points' journal lines, for `merge`).
+void write_result(const MasterJob& job, std::vector<std::optional<PointResult>>& results) {
+  const io::RunInfo info{job.in.resolved_config, job.opt.command};
+  if (job.opt.shard.active()) {
+    std::vector<std::string> records;
+    for (std::size_t i = 0; i < results.size(); ++i)
+      if (results[i]) records.push_back(encode_record(i, *results[i]));
+    write_shard_h5(job.opt.output, job.in, job.opt.shard, records, info);
+    return;
+  }
+  std::vector<PointResult> all;
+  all.reserve(results.size());
+  for (auto& r : results) all.push_back(std::move(*r));
+  write_sweep_h5(job.opt.output, job.in.spec, all, job.base_parameters, job.base_p, info);
+}
+
+// The point loop on the master: hands the missing points (of its shard) to the executor,
+// journals and stores each result as it arrives, shows progress; writes the file when done.
+SweepOutcome run_master(const MasterJob& job, dist::Executor& exec, const dist::Evaluate& evaluate, SweepOutcome out) {
+  const SweepOptions& opt = job.opt;
+  const SweepSpec& spec = job.in.spec;
+  std::unique_ptr<Journal> journal = open_journal(job, out.journal);
+  std::vector<std::optional<PointResult>> results(spec.n_points);
+  for (auto& [i, r] : journal->recovered()) results[i] = r;
+  out.n_recovered = journal->recovered().size();
+  out.n_points = 0;
+  std::vector<dist::Task> pending;
+  for (std::size_t i = 0; i < spec.n_points; ++i) {
+    if (!opt.shard.owns(i)) continue;
+    ++out.n_points;
+    if (!results[i]) pending.push_back({i, {}});
+    else if (results[i]->status != "ok") ++out.n_failed;
+  }
+
+  SignalGuard signals(opt.handle_signals);
+  ProgressBar bar(out.n_points, out.n_recovered, opt.progress);
+  long started = 0;
+  std::size_t done = out.n_recovered;
+  bar.update(done, out.n_failed, true);
+  const dist::KeepGoing keep_going = [&] {
+    return !g_stop_signal && !(opt.stop_after >= 0 && started++ >= opt.stop_after);
+  };
+  const dist::Collect collect = [&](std::size_t i, std::string line) {
+    PointResult r;
+    std::size_t back_index = 0;
+    if (!decode_record(line, back_index, r) || back_index != i) throw Error("internal: journal record does not round-trip");
+    journal->append_line(line);
+    if (r.status != "ok") ++out.n_failed;
+    results[i] = std::move(r);
+    ++out.n_computed;
+    bar.update(++done, out.n_failed);
+  };
+  out.work = exec.run(pending, evaluate, collect, keep_going);
+  bar.finish(done, out.n_failed);
+  out.signal = g_stop_signal;
+  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - job.wall0).count();
+  if (done < out.n_points) {
+    journal->sync();
+    return out;
+  }
+  write_result(job, results);
+  journal->close_and_remove();
+  out.complete = true;
+  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - job.wall0).count();
+  return out;
+}
 
 }  // namespace
 
@@ -85,7 +173,6 @@ PointResult evaluate_point(const scenario::Scenario& scenario, const std::vector
 SweepOutcome run_sweep(const SweepInputs& in, const SweepOptions& opt) {
   const auto wall0 = std::chrono::steady_clock::now();
   const SweepSpec& spec = in.spec;
-  const std::string& resolved = in.resolved_config;
   // Per option combination: its base parameter vector and swept parameter indices.
   std::vector<std::vector<double>> combo_p;
   std::vector<std::vector<std::size_t>> combo_swept;
@@ -104,83 +191,30 @@ SweepOutcome run_sweep(const SweepInputs& in, const SweepOptions& opt) {
   out.n_points = spec.n_points;
   out.output = opt.output;
   out.journal = Journal::path_for(opt.output);
-  if (!opt.resume && std::filesystem::exists(out.journal))
-    throw Error(out.journal + ": journal of an unfinished sweep; pass --resume to continue it, or delete it to start over");
-  Journal journal(out.journal, sweep_fingerprint(resolved, spec), spec.n_points, opt.resume);
-
-  std::vector<std::optional<PointResult>> results(spec.n_points);
-  for (auto& [i, r] : journal.recovered()) results[i] = r;
-  out.n_recovered = journal.recovered().size();
-  std::vector<std::size_t> pending;
-  for (std::size_t i = 0; i < spec.n_points; ++i)
-    if (!results[i]) pending.push_back(i);
-    else if (results[i]->status != "ok") ++out.n_failed;
-
-  const int nthreads = std::max(1, opt.threads > 0 ? opt.threads : omp_get_max_threads());
-  out.threads = nthreads;
-  // One model per thread and option combination, built serially: threads share nothing but
-  // read-only inputs.
-  std::vector<std::vector<std::unique_ptr<scenario::Scenario>>> models(nthreads);
-  for (auto& per_thread : models)
-    for (std::size_t c = 0; c < spec.n_combos; ++c) per_thread.push_back(in.make(c));
+  std::unique_ptr<dist::Executor> exec = dist::make_executor(opt.threads);
+  out.threads = exec->slots();
+  out.executor = exec->describe();
+  out.distributed = exec->distributed();
+  // One scenario per evaluation slot and option combination, built serially: slots share
+  // nothing but read-only inputs.
+  std::vector<std::vector<std::unique_ptr<scenario::Scenario>>> models(exec->slots());
+  for (auto& per_slot : models)
+    for (std::size_t c = 0; c < spec.n_combos; ++c) per_slot.push_back(in.make(c));
   scenario::RunSettings so = in.settings;
   so.solver.progress = false;
-
-  SignalGuard signals(opt.handle_signals);
-  ProgressBar bar(spec.n_points, out.n_recovered, opt.progress);
-  std::mutex mu;
-  std::atomic<bool> stop{false};
-  std::atomic<long> started{0};
-  std::exception_ptr fatal;
-  std::size_t done = out.n_recovered;
-  bar.update(done, out.n_failed, true);
-
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads)
-  for (long k = 0; k < static_cast<long>(pending.size()); ++k) {
-    if (stop.load() || g_stop_signal) continue;
-    if (opt.stop_after >= 0 && started.fetch_add(1) >= opt.stop_after) {
-      stop = true;
-      continue;
-    }
-    const std::size_t i = pending[k];
-    try {
-      const std::size_t c = spec.combo_of(i);
-      PointResult r = evaluate_point(*models[omp_get_thread_num()][c], combo_p[c], combo_swept[c], spec, i, so);
-      // Keep exactly what the journal holds (hex floats are exact; strings are normalised to
-      // valid UTF-8), so a resumed sweep assembles the very same values.
-      const std::string line = encode_record(i, r);
-      std::size_t back_index = 0;
-      if (!decode_record(line, back_index, r) || back_index != i) throw Error("internal: journal record does not round-trip");
-      journal.append_line(line);
-      std::lock_guard<std::mutex> lock(mu);
-      if (r.status != "ok") ++out.n_failed;
-      results[i] = std::move(r);
-      ++out.n_computed;
-      ++done;
-      bar.update(done, out.n_failed);
-    } catch (...) {  // journal I/O failure: stop everything, report after the loop
-      std::lock_guard<std::mutex> lock(mu);
-      if (!fatal) fatal = std::current_exception();
-      stop = true;
-    }
-  }
-  bar.finish(done, out.n_failed);
-  if (fatal) std::rethrow_exception(fatal);
-  out.signal = g_stop_signal;
-  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  if (done < spec.n_points) {
-    journal.sync();
+  // A point's result travels as its journal line (hex floats are exact; strings are normalised
+  // to valid UTF-8), so the master stores exactly what a resumed sweep reads back.
+  const dist::Evaluate evaluate = [&](const dist::Task& t, int slot) {
+    const std::size_t c = spec.combo_of(t.id);
+    return encode_record(t.id, evaluate_point(*models[slot][c], combo_p[c], combo_swept[c], spec, t.id, so));
+  };
+  if (!exec->is_master()) {  // an MPI worker: evaluate what rank 0 hands out, write nothing
+    exec->run({}, evaluate, {}, {});
+    out.worker = true;
     return out;
   }
 
-  std::vector<PointResult> all;
-  all.reserve(spec.n_points);
-  for (auto& r : results) all.push_back(std::move(*r));
-  write_sweep_h5(opt.output, spec, all, base_scenario->parameters(), base_p, {resolved, opt.command});
-  journal.close_and_remove();
-  out.complete = true;
-  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  return out;
+  return run_master({in, opt, base_scenario->parameters(), base_p, wall0}, *exec, evaluate, std::move(out));
 }
 
 }  // namespace phasmid::sweep

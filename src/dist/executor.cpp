@@ -1,0 +1,94 @@
+#include "dist/executor.hpp"
+
+#include <omp.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <mutex>
+
+#include "dist/session.hpp"
+
+namespace phasmid::dist {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+class OpenMPExecutor final : public Executor {
+ public:
+  explicit OpenMPExecutor(int threads) : threads_(std::max(1, threads > 0 ? threads : omp_get_max_threads())) {}
+  int slots() const override { return threads_; }
+  bool is_master() const override { return true; }
+  bool distributed() const override { return false; }
+  std::string describe() const override { return std::to_string(threads_) + (threads_ == 1 ? " thread" : " threads"); }
+
+  std::vector<WorkerStats> run(const std::vector<Task>& tasks, const Evaluate& evaluate, const Collect& collect,
+                               const KeepGoing& keep_going) override {
+    std::vector<WorkerStats> stats(threads_);
+    for (int t = 0; t < threads_; ++t) stats[t].who = "thread " + std::to_string(t);
+    std::mutex mu;  // serialises keep_going and collect
+    std::atomic<bool> stop{false};
+    std::exception_ptr fatal;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads_)
+    for (long k = 0; k < static_cast<long>(tasks.size()); ++k) {
+      if (stop.load()) continue;
+      {
+        std::lock_guard<std::mutex> lock(mu);
+        if (stop.load() || !keep_going()) {
+          stop = true;
+          continue;
+        }
+      }
+      const int t = omp_get_thread_num();
+      const auto t0 = std::chrono::steady_clock::now();
+      try {
+        std::string result = evaluate(tasks[k], t);
+        stats[t].task_seconds.push_back(seconds_since(t0));
+        stats[t].busy_seconds += stats[t].task_seconds.back();
+        ++stats[t].tasks;
+        std::lock_guard<std::mutex> lock(mu);
+        if (!fatal) collect(tasks[k].id, std::move(result));
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mu);
+        if (!fatal) fatal = std::current_exception();
+        stop = true;
+      }
+    }
+    if (fatal) std::rethrow_exception(fatal);
+    return stats;
+  }
+
+ private:
+  int threads_;
+};
+
+}  // namespace
+
+std::unique_ptr<Executor> make_openmp_executor(int threads) { return std::make_unique<OpenMPExecutor>(threads); }
+
+std::unique_ptr<Executor> make_executor(int threads) {
+  if (size() > 1) {
+    if (threads <= 0) threads = std::getenv("OMP_NUM_THREADS") ? omp_get_max_threads() : 1;
+    return make_mpi_executor(threads);
+  }
+  return make_openmp_executor(threads);
+}
+
+std::string format_work_summary(const std::vector<WorkerStats>& stats, const std::string& unit) {
+  double total = 0;
+  for (auto& s : stats) total += s.busy_seconds;
+  std::string out;
+  char line[160];
+  for (auto& s : stats) {
+    std::snprintf(line, sizeof line, "  %s: %zu %s, %.3g s busy (%.0f %%)\n", s.who.c_str(), s.tasks, unit.c_str(),
+                  s.busy_seconds, total > 0 ? 100.0 * s.busy_seconds / total : 0.0);
+    out += line;
+  }
+  return out;
+}
+
+}  // namespace phasmid::dist

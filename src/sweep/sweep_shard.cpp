@@ -1,0 +1,142 @@
+#include "sweep/sweep_shard.hpp"
+
+#include <cinttypes>
+#include <cstdio>
+#include <optional>
+
+#include "common/error.hpp"
+#include "config/sweep_inputs.hpp"
+#include "config/toml_util.hpp"
+#include "sweep/sweep_runner.hpp"
+#include "sweep/sweep_store.hpp"
+
+namespace phasmid::sweep {
+namespace {
+
+std::string hex64(std::uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016" PRIx64, v);
+  return buf;
+}
+
+std::string shard_name(const Shard& s) { return std::to_string(s.index) + "/" + std::to_string(s.count); }
+
+struct ShardFile {
+  std::string path, fingerprint, config_text, config_path;
+  std::vector<std::string> sets, records;
+  Shard shard;
+};
+
+ShardFile read_shard(const std::string& path) {
+  io::H5Reader r(path);
+  if (!r.exists("/sweep_shard"))
+    throw Error(path + ": not a sweep shard (no /sweep_shard; shards are written by phasmid sweep --shard i/N)");
+  ShardFile f;
+  f.path = path;
+  f.fingerprint = r.read_string_attribute("/sweep_shard", "fingerprint");
+  f.config_path = r.read_string_attribute("/sweep_shard", "config_path");
+  f.shard.index = static_cast<std::size_t>(r.read_double_attribute("/sweep_shard", "shard"));
+  f.shard.count = static_cast<std::size_t>(r.read_double_attribute("/sweep_shard", "shards"));
+  f.config_text = r.read_strings("/sweep_shard/config_text").at(0);
+  if (r.exists("/sweep_shard/sets")) f.sets = r.read_strings("/sweep_shard/sets");
+  if (r.exists("/sweep_shard/records")) f.records = r.read_strings("/sweep_shard/records");
+  return f;
+}
+
+// Every shard of one sweep, each once; returns the path given for each shard index ("" if none).
+std::vector<std::string> check_shards(const std::vector<ShardFile>& shards) {
+  const ShardFile& first = shards.front();
+  std::vector<std::string> seen(first.shard.count);
+  for (auto& s : shards) {
+    if (s.fingerprint != first.fingerprint)
+      throw Error(s.path + ": shard of a different sweep than " + first.path + " (config, --set or [sweep] differ)");
+    if (s.shard.count != first.shard.count)
+      throw Error(s.path + ": shard " + shard_name(s.shard) + ", but " + first.path + " is one of " +
+                  std::to_string(first.shard.count) + " shards");
+    if (!seen.at(s.shard.index).empty())
+      throw Error(s.path + ": shard " + shard_name(s.shard) + " given twice (also " + seen[s.shard.index] + ")");
+    seen[s.shard.index] = s.path;
+  }
+  return seen;
+}
+
+void refuse_missing(const std::vector<std::optional<PointResult>>& results, const std::vector<std::string>& seen) {
+  std::string shards, points;
+  std::size_t n_missing = 0;
+  for (std::size_t k = 0; k < seen.size(); ++k)
+    if (seen[k].empty()) shards += (shards.empty() ? "" : ", ") + std::to_string(k) + "/" + std::to_string(seen.size());
+  for (std::size_t i = 0; i < results.size(); ++i)
+    if (!results[i] && ++n_missing <= 10) points += (points.empty() ? "" : ", ") + std::to_string(i);
+  if (n_missing == 0) return;
+  throw Error("merge: " + std::to_string(n_missing) + " of " + std::to_string(results.size()) + " points missing (" +
+              points + (n_missing > 10 ? ", ..." : "") + "): shard" + (shards.find(',') != std::string::npos ? "s " : " ") +
+              shards + " not given");
+}
+
+}  // namespace
+
+Shard parse_shard(const std::string& text) {
+  Shard s;
+  unsigned long i = 0, n = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%lu/%lu%c", &i, &n, &tail) != 2 || n == 0 || i >= n || text[0] == '-')
+    throw Error("--shard '" + text + "': expected i/N with 0 <= i < N (e.g. 0/4)");
+  s.index = i;
+  s.count = n;
+  return s;
+}
+
+std::uint64_t shard_fingerprint(std::uint64_t sweep_fp, const Shard& shard) {
+  return fnv1a("#shard " + shard_name(shard), sweep_fp);
+}
+
+void write_shard_h5(const std::string& output, const SweepInputs& in, const Shard& shard,
+                    const std::vector<std::string>& records, const io::RunInfo& info) {
+  io::H5Writer w(output);
+  w.write_run_info(info);
+  w.ensure_group("/sweep_shard");
+  if (!records.empty()) w.write("/sweep_shard/records", records);
+  w.write("/sweep_shard/config_text", std::vector<std::string>{in.config_text});
+  if (!in.sets.empty()) w.write("/sweep_shard/sets", in.sets);
+  w.set_attribute("/sweep_shard", "fingerprint", hex64(sweep_fingerprint(in.resolved_config, in.spec)));
+  w.set_attribute("/sweep_shard", "config_path", in.config_path);
+  w.set_attribute("/sweep_shard", "shard", static_cast<double>(shard.index));
+  w.set_attribute("/sweep_shard", "shards", static_cast<double>(shard.count));
+  w.set_attribute("/sweep_shard", "n_points", static_cast<double>(in.spec.n_points));
+  w.commit();
+}
+
+MergeOutcome merge_shards(const std::vector<std::string>& parts, const std::string& output, const std::string& command) {
+  if (parts.empty()) throw Error("merge: no shard files given");
+  std::vector<ShardFile> shards;
+  for (auto& p : parts) shards.push_back(read_shard(p));
+  const std::vector<std::string> seen = check_shards(shards);
+  const ShardFile& first = shards.front();
+  // The design and base parameters come from the config the shards ran, as in `phasmid sweep`.
+  const SweepInputs in =
+      config::sweep_inputs(config::parse_config(first.config_text, first.config_path), first.sets);
+  const SweepSpec& spec = in.spec;
+  if (hex64(sweep_fingerprint(in.resolved_config, spec)) != first.fingerprint)
+    throw Error(first.path + ": its config no longer gives the sweep it was run with (another phasmid version?)");
+  std::vector<std::optional<PointResult>> results(spec.n_points);
+  MergeOutcome out;
+  for (auto& s : shards)
+    for (auto& line : s.records) {
+      std::size_t i = 0;
+      PointResult r;
+      if (!decode_record(line, i, r) || i >= spec.n_points || !s.shard.owns(i))
+        throw Error(s.path + ": corrupt record in /sweep_shard/records");
+      if (r.status != "ok") ++out.n_failed;
+      results[i] = std::move(r);
+    }
+  refuse_missing(results, seen);
+  std::vector<PointResult> all;
+  for (auto& r : results) all.push_back(std::move(*r));
+  const auto base = in.make(0);
+  write_sweep_h5(output, spec, all, base->parameters(), base->parameters().values(), {in.resolved_config, command});
+  out.n_points = spec.n_points;
+  out.n_shards = shards.size();
+  return out;
+}
+
+}  // namespace phasmid::sweep
