@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "config/config.hpp"
+#include "config/sweep_inputs.hpp"
 #include "dist/executor.hpp"
 #include "dist/session.hpp"
 #include "sweep/sweep_runner.hpp"
@@ -79,7 +79,7 @@ int costs_and_projection(const std::string& config, double master_us) {
   o.threads = 1;
   o.progress = false;
   std::filesystem::remove(o.output);
-  sweep::SweepOutcome r = sweep::run_sweep(cfg, o);
+  sweep::SweepOutcome r = sweep::run_sweep(config::sweep_inputs(cfg, {}), o);
   std::filesystem::remove(o.output);
   std::vector<double> c = r.work.at(0).task_seconds;
   std::sort(c.begin(), c.end());
