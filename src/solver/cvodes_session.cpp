@@ -58,11 +58,11 @@ CvodesSession::CvodesSession(SUNContext ctx, const SolverOptions& options, const
   for (size_t i = 0; i < n; ++i) NV_Ith_S(y(), i) = y0[i];
   mem_.reset(CVodeCreate(options.integrator == IntegratorKind::Adams ? CV_ADAMS : CV_BDF, ctx));
   if (!mem_) throw SolverError("CVodeCreate failed");
+  check_cvodes(CVodeSetErrHandlerFn(mem(), [](int, const char*, const char*, char*, void*) {}, nullptr), "silence");
   check_cvodes(CVodeInit(mem(), rhs, 0.0, y()), "CVodeInit");
   check_cvodes(CVodeSStolerances(mem(), options.rtol, options.atol), "CVodeSStolerances");
   check_cvodes(CVodeSetUserData(mem(), user_data), "CVodeSetUserData");
   check_cvodes(CVodeSetMaxNumSteps(mem(), options.max_steps), "CVodeSetMaxNumSteps");
-  check_cvodes(CVodeSetErrHandlerFn(mem(), [](int, const char*, const char*, char*, void*) {}, nullptr), "silence");
   if (options.max_step_ms > 0) check_cvodes(CVodeSetMaxStep(mem(), options.max_step_ms), "CVodeSetMaxStep");
   if (options.max_order > 0) check_cvodes(CVodeSetMaxOrd(mem(), options.max_order), "CVodeSetMaxOrd");
   if (options.stability_limit_detection) check_cvodes(CVodeSetStabLimDet(mem(), SUNTRUE), "CVodeSetStabLimDet");
