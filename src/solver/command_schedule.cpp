@@ -38,12 +38,9 @@ void CommandSchedule::stop_time_sensitivities() {
     return best;
   };
   for (size_t j = 0; j < sens_params_.size(); ++j) {
-    const size_t k = sens_params_[j];
-    const double hstep = 1e-6 * std::max(1.0, std::abs(p_[k]));
-    std::vector<double> pp = p_, pm = p_;
-    pp[k] += hstep;
-    pm[k] -= hstep;
-    std::vector<double> bp = model_.breakpoints(pp, t_end), bm = model_.breakpoints(pm, t_end);
+    auto [bp, bm, hstep] = central_pair(p_, sens_params_[j], [&](const std::vector<double>& q) {
+      return model_.breakpoints(q, t_end);
+    });
     std::sort(bp.begin(), bp.end());
     std::sort(bm.begin(), bm.end());
     for (size_t b = 0; b + 1 < stops_.size(); ++b) {

@@ -14,7 +14,10 @@
 //    crossing; the delay is constant). At tau the state is continuous and the sensitivities
 //    jump: s(tau+) = s(tau-) + (f(tau-) - f(tau+)) d tau / dp_j (apply_jump). Two switches at
 //    one time that move differently with p have no single jump: an Error.
+#include <algorithm>
+#include <cmath>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "model/ode_model.hpp"
@@ -22,6 +25,18 @@
 #include "solver/trigger_tracker.hpp"
 
 namespace phasmid::solver {
+
+// g(p + h e_k), g(p - h e_k) and h = 1e-6 max(1, |p_k|): a central difference along p_k of a
+// function that is algebraic in the parameters (initial states, switch times), so exact up to
+// round-off.
+template <class G>
+auto central_pair(const std::vector<double>& p, size_t k, G g) {
+  const double h = 1e-6 * std::max(1.0, std::abs(p[k]));
+  std::vector<double> pp = p, pm = p;
+  pp[k] += h;
+  pm[k] -= h;
+  return std::make_tuple(g(pp), g(pm), h);
+}
 
 class CommandSchedule {
  public:

@@ -95,7 +95,9 @@ class CvodesSession {
   template <class Handle>
   using Owned = std::unique_ptr<std::remove_pointer_t<Handle>, Free>;
   struct FreeArray {
-    int n;  // no initializer: default-constructible inside the incomplete class
+    // No default member initializer: with one, unique_ptr could not default-construct this
+    // deleter while CvodesSession is still incomplete.
+    int n;
     void operator()(N_Vector* v) const;
   };
   const SolverOptions& options_;

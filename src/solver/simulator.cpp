@@ -303,11 +303,8 @@ void init_sensitivities(CvodesSession& session, const OdeModel& model, const std
   std::vector<double> pbar(sens_params.size());
   for (size_t j = 0; j < sens_params.size(); ++j) {
     const size_t k = sens_params[j];
-    const double hstep = 1e-6 * std::max(1.0, std::abs(p[k]));
-    std::vector<double> pp = p, pm = p;
-    pp[k] += hstep;
-    pm[k] -= hstep;
-    const std::vector<double> yp = model.initial_state(pp), ym = model.initial_state(pm);
+    const auto [yp, ym, hstep] =
+        central_pair(p, k, [&](const std::vector<double>& q) { return model.initial_state(q); });
     for (size_t i = 0; i < n; ++i) s0[j][i] = (yp[i] - ym[i]) / (2 * hstep);
     pbar[j] = std::abs(p[k]) > 0 ? std::abs(p[k]) : 1.0;
   }
