@@ -2,25 +2,18 @@
 
 #include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
-#include <sundials/sundials_context.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
-#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <sstream>
 
 #include "common/error.hpp"
-#include "solver/cvodes_counters.hpp"
-#include "solver/cvodes_setup.hpp"
-#include "solver/matrix_kernels.hpp"
-#include "solver/serial_kernels.hpp"
-#include "solver/trigger_tracker.hpp"
+#include "solver/command_schedule.hpp"
+#include "solver/cvodes_session.hpp"
+#include "solver/run_loop.hpp"
 
 namespace phasmid::solver {
 using model::JetK;
@@ -41,12 +34,7 @@ struct PartSolver {
   std::vector<std::pair<size_t, size_t>> input_from;  // per input: (part, index into that part's exports)
   std::vector<size_t> exports;                        // local indices of its states others read
   std::unique_ptr<model::OdeModelPart> eq;
-
-  void* mem = nullptr;
-  N_Vector y = nullptr, tmp = nullptr;
-  SUNMatrix A = nullptr;
-  SUNLinearSolver LS = nullptr;
-  SUNNonlinearSolver NLS = nullptr;
+  std::unique_ptr<CvodesSession> session;
 
   std::vector<double> yfull, ffull;  // full-size state and derivative for the part's equations
   std::vector<JetK> yK, fK;
@@ -58,21 +46,12 @@ struct PartSolver {
   std::vector<double> coef;
 
   double t = 0.0;        // time reached (CVODES' internal tn)
+  bool restart_pending = false;  // at a stop: restarts from there before its next step
   size_t next_out = 0;   // first output time not yet written
   long steps_since_output = 0;  // against SolverOptions::max_steps (per output interval)
   std::vector<size_t> roots;          // global root indices watched by this part
   std::vector<size_t> root_state;     // their local state indices
   std::vector<size_t> pending_events; // events whose state this part has not yet passed
-  SolverStats counters;               // over restarts (CVodeReInit resets CVODES' own)
-
-  ~PartSolver() {
-    if (NLS) SUNNonlinSolFree(NLS);
-    if (mem) CVodeFree(&mem);
-    if (LS) SUNLinSolFree(LS);
-    if (A) SUNMatDestroy(A);
-    if (tmp) N_VDestroy(tmp);
-    if (y) N_VDestroy(y);
-  }
 
   double export_value(size_t e, double at) const {
     const double dt = at - t_poly;
@@ -85,30 +64,19 @@ struct PartSolver {
   void update_polynomial() {
     if (exports.empty()) return;
     int q = 0;
-    CVodeGetLastOrder(mem, &q);
+    CVodeGetLastOrder(session->mem(), &q);
     double tn = 0.0;
-    CVodeGetCurrentTime(mem, &tn);
+    CVodeGetCurrentTime(session->mem(), &tn);
     const size_t ne = exports.size();
     double factorial = 1.0;
     for (int d = 0; d <= q; ++d) {
       if (d > 0) factorial *= d;
-      check_cvodes(CVodeGetDky(mem, tn, d, tmp), "CVodeGetDky");
-      for (size_t e = 0; e < ne; ++e) coef[static_cast<size_t>(d) * ne + e] = NV_Ith_S(tmp, exports[e]) / factorial;
+      check_cvodes(CVodeGetDky(session->mem(), tn, d, session->work()), "CVodeGetDky");
+      for (size_t e = 0; e < ne; ++e)
+        coef[static_cast<size_t>(d) * ne + e] = NV_Ith_S(session->work(), exports[e]) / factorial;
     }
     order = q;
     t_poly = tn;
-  }
-
-  void add_counters() {
-    long s = 0;
-    CVodeGetNumSteps(mem, &s);
-    counters.steps += s;
-    add_cvodes_counters(mem, counters);
-  }
-  long total_steps() const {
-    long v = 0;
-    CVodeGetNumSteps(mem, &v);
-    return counters.steps + v;
   }
 };
 
@@ -169,45 +137,16 @@ int part_roots(sunrealtype, N_Vector y, sunrealtype* g, void* ud) {
   return 0;
 }
 
-struct ContextHandle {
-  SUNContext ctx = nullptr;
-  ~ContextHandle() {
-    if (ctx) SUNContext_Free(&ctx);
-  }
-};
-
-}  // namespace
-
-SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPartition& P, const SolverOptions& options,
-                            const std::vector<double>& p_given, const std::vector<double>& output_times,
-                            const std::vector<RootSpec>& caller_roots) {
-  auto wall0 = std::chrono::steady_clock::now();
+// The parts of P with their equations, who reads whose exports, and which roots each watches.
+void build_parts(Run& run, const model::OdeModel& model, const model::ModelPartition& P,
+                 const std::vector<RootSpec>& roots) {
   const size_t n = model.num_states();
-  // Triggered command times are "never" until their events (as in Simulator::run); each trigger
-  // watches its threshold in both directions, after the caller's roots.
-  const std::vector<model::CommandTrigger>& triggers = model.triggers();
-  std::vector<double> p = p_given;
-  for (const auto& tr : triggers)
-    for (size_t k : tr.targets) p[k] = model::kUnresolvedMs;
-  std::vector<RootSpec> roots = caller_roots;
-  for (const auto& tr : triggers) roots.push_back({tr.state, tr.level_scale * p[tr.level_param], 0});
-  const size_t n_out = output_times.size();
-  const double t_end = output_times.back();
-  const std::vector<double> y0 = model.initial_state(p);
-
   std::vector<size_t> part_of(n), local_of(n);
   for (size_t k = 0; k < P.size(); ++k)
     for (size_t i = 0; i < P.states[k].size(); ++i) {
       part_of[P.states[k][i]] = k;
       local_of[P.states[k][i]] = i;
     }
-
-  ContextHandle ctx;  // declared before the parts: destroyed after them
-  Run run;
-  run.p = &p;
-  run.roots = &roots;
-  for (double v : p) run.pK.emplace_back(v);
-  check_cvodes(SUNContext_Create(nullptr, &ctx.ctx), "SUNContext_Create");
   for (size_t k = 0; k < P.size(); ++k) {
     auto ps = std::make_unique<PartSolver>();
     ps->run = &run;
@@ -222,7 +161,6 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
     ps->fK.assign(n, JetK(0.0));
     run.parts.push_back(std::move(ps));
   }
-  // Who exports what to whom.
   for (auto& ps : run.parts)
     for (size_t g : ps->inputs) {
       PartSolver& owner = *run.parts[part_of[g]];
@@ -236,259 +174,299 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
     ps.roots.push_back(r);
     ps.root_state.push_back(local_of[roots[r].state]);
   }
+}
 
-  std::vector<double> breaks = model.breakpoints(p, t_end);
-  std::sort(breaks.begin(), breaks.end());
-  breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double b) { return b <= 0.0 || b >= t_end; }),
-               breaks.end());
-  breaks.push_back(t_end);
-  size_t next_break = 0;
-
-  const bool adams = options.integrator == IntegratorKind::Adams;
+// Each part's integrator from y0, integrating towards the first stop.
+void start_sessions(Run& run, SUNContext ctx, const SolverOptions& options, const std::vector<double>& y0,
+                    double first_stop) {
   for (auto& psp : run.parts) {
     PartSolver& ps = *psp;
-    const auto nk = static_cast<sunindextype>(ps.states.size());
-    ps.y = N_VNew_Serial(nk, ctx.ctx);
-    if (options.vector_kernels == VectorKernels::Phasmid) install_serial_kernels(ps.y);
-    ps.tmp = N_VClone(ps.y);
-    for (size_t i = 0; i < ps.states.size(); ++i) NV_Ith_S(ps.y, i) = y0[ps.states[i]];
+    std::vector<double> own(ps.states.size());
+    for (size_t i = 0; i < ps.states.size(); ++i) own[i] = y0[ps.states[i]];
     // Before its first step a part's polynomial is its initial value.
     ps.coef.assign(static_cast<size_t>(kMaxOrder + 1) * ps.exports.size(), 0.0);
     for (size_t e = 0; e < ps.exports.size(); ++e) ps.coef[e] = y0[ps.states[ps.exports[e]]];
-    ps.mem = CVodeCreate(adams ? CV_ADAMS : CV_BDF, ctx.ctx);
-    if (!ps.mem) throw SolverError("CVodeCreate failed");
-    check_cvodes(CVodeInit(ps.mem, part_rhs, 0.0, ps.y), "CVodeInit");
-    check_cvodes(CVodeSStolerances(ps.mem, options.rtol, options.atol), "CVodeSStolerances");
-    check_cvodes(CVodeSetUserData(ps.mem, &ps), "CVodeSetUserData");
-    apply_step_options(ps.mem, options);
-    if (adams) {
-      ps.NLS = SUNNonlinSol_FixedPoint(ps.y, 0, ctx.ctx);
-      check_cvodes(CVodeSetNonlinearSolver(ps.mem, ps.NLS), "CVodeSetNonlinearSolver");
-    } else {
-      // Parts are small (a joint: 20-26 states): dense LU with the compiled kernels.
-      ps.A = SUNDenseMatrix(nk, nk, ctx.ctx);
-      ps.LS = SUNLinSol_Dense(ps.y, ps.A, ctx.ctx);
-      if (options.vector_kernels == VectorKernels::Phasmid) install_dense_kernels(ps.A, ps.LS);
-      check_cvodes(CVodeSetLinearSolver(ps.mem, ps.LS, ps.A), "CVodeSetLinearSolver");
-      if (options.jacobian == JacobianKind::AutoDiff) check_cvodes(CVodeSetJacFn(ps.mem, part_jac), "CVodeSetJacFn");
-    }
-    if (!ps.roots.empty()) {
-      std::vector<int> dirs;
-      for (size_t r : ps.roots) dirs.push_back(roots[r].direction);
-      check_cvodes(CVodeRootInit(ps.mem, static_cast<int>(ps.roots.size()), part_roots), "CVodeRootInit");
-      check_cvodes(CVodeSetRootDirection(ps.mem, dirs.data()), "CVodeSetRootDirection");
-      CVodeSetNoInactiveRootWarn(ps.mem);
-    }
-    check_cvodes(CVodeSetStopTime(ps.mem, breaks[0]), "CVodeSetStopTime");
+    ps.session = std::make_unique<CvodesSession>(ctx, options, own.data(), own.size(), part_rhs, &ps);
+    // Parts are small (a joint: 20-26 states): dense LU with the compiled kernels.
+    ps.session->set_linear_solver(LinearSystem::Dense, 0, 0,
+                                  options.jacobian == JacobianKind::AutoDiff ? part_jac : nullptr);
+    std::vector<int> dirs;
+    for (size_t r : ps.roots) dirs.push_back((*run.roots)[r].direction);
+    ps.session->init_roots(dirs, part_roots);
+    ps.session->set_stop_time(first_stop);
   }
+}
 
-  SolveResult res;
+// The parts as the Driver of run_loop: the part furthest behind steps next (see the header);
+// parts at the next stop wait. Trigger crossings wait until every part has passed them (an
+// earlier crossing in a lagging part may arm or fire a trigger first; in_stance reads other
+// parts' states), then fire in time order. A command at tau is a new stop: parts already beyond
+// tau go back to it (tau lies in their last step) and what they found after tau is discarded.
+class Partitioned {
+ public:
+  Partitioned(Run& run, const model::OdeModel& model, const SolverOptions& options,
+              const std::vector<double>& output_times, size_t n_caller_roots, const std::vector<double>& y0,
+              SolveResult& res);
+  bool finished(const CommandSchedule& s) const { return !lagging(s) && s.last_stop(); }
+  double advance(CommandSchedule& s);
+  void handle_events(CommandSchedule& s);
+  bool at_stop(const CommandSchedule& s) const { return !lagging(s); }
+  // Every part restarts from its state at the stop before its next step (restart_pending), so
+  // that its last step still serves the interpolation of outputs and events at the stop.
+  void restart(double, const std::vector<double>&, double) {
+    for (auto& ps : run_.parts) ps->restart_pending = true;
+    ++res_.stats.restarts;
+  }
+  void record_outputs() {
+    if (stepped_) write_outputs(*stepped_, stepped_->t);
+  }
+  // The caller's events in time order, each with the full right-hand side at its state; the
+  // parts' counters.
+  void finish(const std::vector<double>& p);
+
+ private:
+  PartSolver* lagging(const CommandSchedule& s) const;
+  void take_roots(PartSolver& ps, double tret);
+  void write_states(PartSolver& ps, double t, double* row) const;
+  void write_outputs(PartSolver& ps, double up_to);
+  void write_pending_events(PartSolver& ps);
+  void feed_triggers(CommandSchedule& s);
+  void add_command_time(CommandSchedule& s, double tau, size_t k);
+  void roll_back(PartSolver& x, double tau);
+  long total_steps() const;
+
+  Run& run_;
+  const model::OdeModel& model_;
+  const SolverOptions& options_;
+  const std::vector<double>& output_times_;
+  const size_t n_caller_roots_;
+  SolveResult& res_;
+  size_t first_out_ = 0;
+  std::vector<size_t> parts_done_;  // parts that have written output k
+  std::vector<char> discarded_;     // per entry of res.events
+  std::vector<size_t> deferred_;    // res.events entries that are trigger crossings not yet fed
+  PartSolver* stepped_ = nullptr;   // the part of the last advance
+  int flag_ = 0;
+  std::vector<int> found_;
+};
+
+Partitioned::Partitioned(Run& run, const model::OdeModel& model, const SolverOptions& options,
+                         const std::vector<double>& output_times, size_t n_caller_roots,
+                         const std::vector<double>& y0, SolveResult& res)
+    : run_(run), model_(model), options_(options), output_times_(output_times), n_caller_roots_(n_caller_roots),
+      res_(res), parts_done_(output_times.size(), 0) {
+  const size_t n = model.num_states(), n_out = output_times.size();
   res.n_states = n;
   res.t = output_times;
   res.y.assign(n_out * n, NAN);
   res.steps_at_output.assign(n_out, 0);
-  std::vector<size_t> parts_done(n_out, 0);  // parts that have written output k
-  size_t first_out = 0;
-  while (first_out < n_out && output_times[first_out] <= 0.0) {
-    std::copy(y0.begin(), y0.end(), res.y.begin() + static_cast<long>(first_out * n));
-    ++first_out;
+  while (first_out_ < n_out && output_times[first_out_] <= 0.0) {
+    std::copy(y0.begin(), y0.end(), res.y.begin() + static_cast<long>(first_out_ * n));
+    ++first_out_;
   }
-  for (auto& ps : run.parts) ps->next_out = first_out;
-  auto total_steps = [&] {
-    long s = 0;
-    for (auto& ps : run.parts) s += ps->total_steps();
-    return s;
-  };
-  // Writes part `ps`'s states at time t (within its last step) into the full-size state `row`.
-  auto write_states = [&](PartSolver& ps, double t, double* row) {
-    if (CVodeGetDky(ps.mem, t, 0, ps.tmp) < 0) {  // the scheduling guarantees t is in the last step
-      double tn = 0.0, hu = 0.0;
-      CVodeGetCurrentTime(ps.mem, &tn);
-      CVodeGetLastStep(ps.mem, &hu);
-      std::ostringstream os;
-      os << "internal: part " << ps.name << " cannot interpolate at t = " << t << " ms (last step " << tn - hu
-         << " .. " << tn << " ms); set [simulation] partitioned = false";
-      throw SolverError(os.str());
-    }
-    for (size_t i = 0; i < ps.states.size(); ++i) row[ps.states[i]] = NV_Ith_S(ps.tmp, i);
-  };
+  for (auto& ps : run.parts) ps->next_out = first_out_;
+}
 
-  // Trigger crossings wait until every part has passed them (an earlier crossing in a lagging
-  // part may arm or fire a trigger first; in_stance reads other parts' states), then fire in
-  // time order. A command at tau is a new synchronisation point: parts already beyond tau go
-  // back to it (tau lies in their last step) and what they found after tau is discarded.
-  std::vector<char> discarded;   // per entry of res.events
-  std::vector<size_t> deferred;  // res.events entries that are trigger crossings not yet fed
-  std::vector<TriggerTracker> trackers(triggers.size());
-  auto roll_back = [&](PartSolver& x, double tau) {
-    write_states(x, tau, x.yfull.data());
-    for (size_t i = 0; i < x.states.size(); ++i) NV_Ith_S(x.y, i) = x.yfull[x.states[i]];
-    x.add_counters();
-    check_cvodes(CVodeReInit(x.mem, tau, x.y), "CVodeReInit");
-    x.t = tau;
-    while (x.next_out > first_out && output_times[x.next_out - 1] > tau) --parts_done[--x.next_out];
-  };
-  auto add_command_time = [&](double tau) {
-    const auto at = std::lower_bound(breaks.begin() + static_cast<long>(next_break), breaks.end(), tau);
-    if (std::abs(*at - tau) <= 1e-9 * std::max(1.0, tau)) return;  // already a synchronisation point
-    const bool next = at == breaks.begin() + static_cast<long>(next_break);
-    breaks.insert(at, tau);
-    if (!next) return;  // later than the next one: every part is before it
-    for (auto& x : run.parts) {
-      if (x->t > tau) roll_back(*x, tau);
-      else if (x->t < tau) check_cvodes(CVodeSetStopTime(x->mem, tau), "CVodeSetStopTime");
-    }
-    for (size_t id = 0; id < res.events.size(); ++id)
-      if (res.events[id].t > tau) discarded[id] = 1;
-    deferred.erase(std::remove_if(deferred.begin(), deferred.end(), [&](size_t id) { return discarded[id] != 0; }),
-                   deferred.end());
-    for (auto& x : run.parts)
-      x->pending_events.erase(std::remove_if(x->pending_events.begin(), x->pending_events.end(),
-                                             [&](size_t id) { return discarded[id] != 0; }),
-                              x->pending_events.end());
-  };
-  auto feed_triggers = [&] {
-    double t_min = INFINITY;
-    for (auto& x : run.parts) t_min = std::min(t_min, x->t);
-    for (;;) {
-      auto next = std::min_element(deferred.begin(), deferred.end(),
-                                   [&](size_t a, size_t b) { return res.events[a].t < res.events[b].t; });
-      if (next == deferred.end() || res.events[*next].t > t_min) return;
-      const size_t id = *next;
-      deferred.erase(next);
-      const Event& e = res.events[id];
-      const size_t k = e.root - caller_roots.size();
-      if (!trackers[k].fires(triggers[k], e.t, e.direction, p, e.y.data())) continue;
-      const double tau = e.t + triggers[k].delay_ms;
-      for (size_t q : triggers[k].targets) {
-        p[q] = tau;
-        run.pK[q] = JetK(tau);
-        res.commands.push_back({q, tau, k});
-      }
-      if (tau < t_end) add_command_time(tau);
-    }
-  };
+PartSolver* Partitioned::lagging(const CommandSchedule& s) const {
+  PartSolver* lag = nullptr;
+  for (auto& ps : run_.parts)
+    if (ps->t < s.next_stop() && (!lag || ps->t < lag->t)) lag = ps.get();
+  return lag;
+}
 
-  const bool show_progress = options.progress && isatty(STDERR_FILENO);
-  auto last_print = std::chrono::steady_clock::now();
-  std::vector<int> found;
-  for (;;) {
-    // The part furthest behind steps next (see the header); parts at the breakpoint wait.
-    PartSolver* lag = nullptr;
-    for (auto& ps : run.parts)
-      if (ps->t < breaks[next_break] && (!lag || ps->t < lag->t)) lag = ps.get();
-    if (!lag) {
-      if (next_break + 1 == breaks.size()) break;
-      // All parts are at a central command: restart each from its state there.
-      const double tb = breaks[next_break++];
-      for (auto& ps : run.parts) {
-        ps->add_counters();
-        check_cvodes(CVodeReInit(ps->mem, tb, ps->y), "CVodeReInit");
-        check_cvodes(CVodeSetStopTime(ps->mem, breaks[next_break]), "CVodeSetStopTime");
+double Partitioned::advance(CommandSchedule& s) {
+  stepped_ = lagging(s);
+  if (!stepped_) throw Error("internal: partitioned run advanced with every part at its stop");
+  PartSolver& ps = *stepped_;
+  if (ps.restart_pending) {
+    ps.session->restart(ps.t);
+    ps.session->set_stop_time(s.next_stop());
+    ps.restart_pending = false;
+  }
+  double tret = ps.t;
+  flag_ = ps.session->advance(s.next_stop(), &tret, CV_ONE_STEP);
+  // CV_ONE_STEP never reports CV_TOO_MUCH_WORK: the same limit per output interval here.
+  const bool too_much_work = ++ps.steps_since_output > options_.max_steps;
+  if (flag_ < 0 || too_much_work) {
+    std::ostringstream os;
+    os << "CVODES failed at t = " << tret << " ms in part " << ps.name << ": "
+       << (too_much_work ? "CV_TOO_MUCH_WORK" : cvodes_flag_name(flag_))
+       << " (try --set on the offending parameter, tighter tolerances, or partitioned = false)";
+    throw SolverError(os.str());
+  }
+  if (flag_ == CV_TSTOP_RETURN) ps.t = s.next_stop();
+  else CVodeGetCurrentTime(ps.session->mem(), &ps.t);
+  ps.update_polynomial();
+  take_roots(ps, tret);
+  return ps.t;
+}
+
+// Every root of this step is taken now, before another part steps on: a second call in
+// CV_NORMAL mode to the time reached returns the step's remaining roots one by one and then
+// y(t) without stepping. (Another part's next step could otherwise leave the time of a later
+// root of this step, where its state is interpolated.)
+void Partitioned::take_roots(PartSolver& ps, double tret) {
+  const size_t n = model_.num_states();
+  for (int f = flag_; f == CV_ROOT_RETURN;) {
+    found_.assign(ps.roots.size(), 0);
+    check_cvodes(CVodeGetRootInfo(ps.session->mem(), found_.data()), "CVodeGetRootInfo");
+    for (size_t r = 0; r < ps.roots.size(); ++r) {
+      if (!found_[r]) continue;
+      Event e;
+      e.t = tret;
+      e.root = ps.roots[r];
+      e.direction = found_[r];
+      e.y.assign(n, NAN);
+      for (size_t i = 0; i < ps.states.size(); ++i) e.y[ps.states[i]] = NV_Ith_S(ps.session->y(), i);  // y(tret)
+      res_.events.push_back(std::move(e));
+      discarded_.push_back(0);
+      const size_t id = res_.events.size() - 1;
+      if (ps.roots[r] >= n_caller_roots_) deferred_.push_back(id);
+      // Parts past the event interpolate now (its time lies in their last step: each part's
+      // last step began at or before the lagging part's time); the others when they get there.
+      for (auto& other : run_.parts) {
+        if (other.get() == &ps) continue;
+        if (other->t >= tret) write_states(*other, tret, res_.events[id].y.data());
+        else other->pending_events.push_back(id);
       }
-      ++res.stats.restarts;
-      continue;
     }
-    PartSolver& ps = *lag;
-    double tret = ps.t;
-    const int flag = CVode(ps.mem, breaks[next_break], ps.y, &tret, CV_ONE_STEP);
-    // CV_ONE_STEP never reports CV_TOO_MUCH_WORK: the same limit per output interval here.
-    const bool too_much_work = ++ps.steps_since_output > options.max_steps;
-    if (flag < 0 || too_much_work) {
-      std::ostringstream os;
-      os << "CVODES failed at t = " << tret << " ms in part " << ps.name << ": "
-         << (too_much_work ? "CV_TOO_MUCH_WORK" : CVodeGetReturnFlagName(flag))
-         << " (try --set on the offending parameter, tighter tolerances, or partitioned = false)";
-      throw SolverError(os.str());
-    }
-    if (flag == CV_TSTOP_RETURN) {
-      ps.t = breaks[next_break];
+    f = ps.session->advance(ps.t, &tret, CV_NORMAL);
+    if (f < 0) check_cvodes(f, "CVode (roots of the last step)");
+  }
+}
+
+void Partitioned::handle_events(CommandSchedule& s) {
+  write_pending_events(*stepped_);
+  if (!deferred_.empty()) feed_triggers(s);
+}
+
+// Writes part `ps`'s states at time t (within its last step) into the full-size state `row`.
+void Partitioned::write_states(PartSolver& ps, double t, double* row) const {
+  N_Vector tmp = ps.session->work();
+  if (CVodeGetDky(ps.session->mem(), t, 0, tmp) < 0) {  // the scheduling guarantees t is in the last step
+    double tn = 0.0, hu = 0.0;
+    CVodeGetCurrentTime(ps.session->mem(), &tn);
+    CVodeGetLastStep(ps.session->mem(), &hu);
+    std::ostringstream os;
+    os << "internal: part " << ps.name << " cannot interpolate at t = " << t << " ms (last step " << tn - hu
+       << " .. " << tn << " ms); set [simulation] partitioned = false";
+    throw SolverError(os.str());
+  }
+  for (size_t i = 0; i < ps.states.size(); ++i) row[ps.states[i]] = NV_Ith_S(tmp, i);
+}
+
+void Partitioned::write_outputs(PartSolver& ps, double up_to) {
+  const size_t n = model_.num_states();
+  while (ps.next_out < output_times_.size() && output_times_[ps.next_out] <= up_to) {
+    const size_t k = ps.next_out++;
+    ps.steps_since_output = 0;
+    write_states(ps, output_times_[k], &res_.y[k * n]);
+    if (++parts_done_[k] == run_.parts.size()) res_.steps_at_output[k] = total_steps();
+  }
+}
+
+void Partitioned::write_pending_events(PartSolver& ps) {
+  for (size_t i = 0; i < ps.pending_events.size();) {
+    const size_t id = ps.pending_events[i];
+    if (res_.events[id].t <= ps.t) {
+      write_states(ps, res_.events[id].t, res_.events[id].y.data());
+      ps.pending_events.erase(ps.pending_events.begin() + static_cast<long>(i));
     } else {
-      CVodeGetCurrentTime(ps.mem, &ps.t);
-    }
-    ps.update_polynomial();
-    // Every root of this step is taken now, before another part steps on: a second call in
-    // CV_NORMAL mode to the time reached returns the step's remaining roots one by one and
-    // then y(t) without stepping. (Another part's next step could otherwise leave the time
-    // of a later root of this step, where its state is interpolated.)
-    for (int f = flag; f == CV_ROOT_RETURN;) {
-      found.assign(ps.roots.size(), 0);
-      check_cvodes(CVodeGetRootInfo(ps.mem, found.data()), "CVodeGetRootInfo");
-      for (size_t r = 0; r < ps.roots.size(); ++r) {
-        if (!found[r]) continue;
-        Event e;
-        e.t = tret;
-        e.root = ps.roots[r];
-        e.direction = found[r];
-        e.y.assign(n, NAN);
-        for (size_t i = 0; i < ps.states.size(); ++i) e.y[ps.states[i]] = NV_Ith_S(ps.y, i);  // y(tret)
-        res.events.push_back(std::move(e));
-        discarded.push_back(0);
-        const size_t id = res.events.size() - 1;
-        if (ps.roots[r] >= caller_roots.size()) deferred.push_back(id);
-        // Parts past the event interpolate now (its time lies in their last step: each part's
-        // last step began at or before the lagging part's time); the others when they get there.
-        for (auto& other : run.parts) {
-          if (other.get() == &ps) continue;
-          if (other->t >= tret) write_states(*other, tret, res.events[id].y.data());
-          else other->pending_events.push_back(id);
-        }
-      }
-      f = CVode(ps.mem, ps.t, ps.y, &tret, CV_NORMAL);
-      if (f < 0) check_cvodes(f, "CVode (roots of the last step)");
-    }
-    // Outputs and pending event states up to the time reached.
-    while (ps.next_out < n_out && output_times[ps.next_out] <= ps.t) {
-      const size_t k = ps.next_out++;
-      ps.steps_since_output = 0;
-      write_states(ps, output_times[k], &res.y[k * n]);
-      if (++parts_done[k] == run.parts.size()) res.steps_at_output[k] = total_steps();
-    }
-    for (size_t i = 0; i < ps.pending_events.size();) {
-      const size_t id = ps.pending_events[i];
-      if (res.events[id].t <= ps.t) {
-        write_states(ps, res.events[id].t, res.events[id].y.data());
-        ps.pending_events.erase(ps.pending_events.begin() + static_cast<long>(i));
-      } else {
-        ++i;
-      }
-    }
-    if (!deferred.empty()) feed_triggers();
-    if (show_progress) {
-      auto now = std::chrono::steady_clock::now();
-      if (now - last_print > std::chrono::milliseconds(200)) {
-        std::fprintf(stderr, "\r%s: t = %.0f / %.0f ms (%3.0f%%, %zu parts)", options.progress_label.c_str(), ps.t,
-                     t_end, 100.0 * ps.t / t_end, run.parts.size());
-        last_print = now;
-      }
+      ++i;
     }
   }
-  if (show_progress)
-    std::fprintf(stderr, "\r%s: t = %.0f / %.0f ms (100%%, %zu parts)\n", options.progress_label.c_str(), t_end, t_end,
-                 run.parts.size());
+}
 
-  // The caller's events in time order, each with the full right-hand side at its state.
+void Partitioned::feed_triggers(CommandSchedule& s) {
+  double t_min = INFINITY;
+  for (auto& x : run_.parts) t_min = std::min(t_min, x->t);
+  for (;;) {
+    auto next = std::min_element(deferred_.begin(), deferred_.end(),
+                                 [&](size_t a, size_t b) { return res_.events[a].t < res_.events[b].t; });
+    if (next == deferred_.end() || res_.events[*next].t > t_min) return;
+    const size_t id = *next;
+    deferred_.erase(next);
+    const Event& e = res_.events[id];
+    const size_t k = e.root - n_caller_roots_;
+    if (!s.fire(k, e.t, e.direction, e.y.data(), res_.commands)) continue;
+    const double tau = e.t + s.triggers()[k].delay_ms;
+    for (size_t q : s.triggers()[k].targets) run_.pK[q] = JetK(tau);
+    if (tau < s.t_end()) add_command_time(s, tau, k);
+  }
+}
+
+void Partitioned::add_command_time(CommandSchedule& s, double tau, size_t k) {
+  // A later stop than the next one: every part is before it.
+  if (s.add_command_time(tau, {}, k) != CommandSchedule::Added::Next) return;
+  for (auto& x : run_.parts) {
+    if (x->t > tau) roll_back(*x, tau);
+    else if (x->t < tau) x->session->set_stop_time(tau);
+  }
+  for (size_t id = 0; id < res_.events.size(); ++id)
+    if (res_.events[id].t > tau) discarded_[id] = 1;
+  auto is_discarded = [&](size_t id) { return discarded_[id] != 0; };
+  deferred_.erase(std::remove_if(deferred_.begin(), deferred_.end(), is_discarded), deferred_.end());
+  for (auto& x : run_.parts)
+    x->pending_events.erase(std::remove_if(x->pending_events.begin(), x->pending_events.end(), is_discarded),
+                            x->pending_events.end());
+}
+
+// Part x back to tau (within its last step): its outputs up to tau first (they interpolate its
+// last step), then a restart from its interpolated state at tau.
+void Partitioned::roll_back(PartSolver& x, double tau) {
+  write_outputs(x, tau);
+  write_states(x, tau, x.yfull.data());
+  for (size_t i = 0; i < x.states.size(); ++i) NV_Ith_S(x.session->y(), i) = x.yfull[x.states[i]];
+  x.session->restart(tau);
+  x.restart_pending = false;
+  x.t = tau;
+  while (x.next_out > first_out_ && output_times_[x.next_out - 1] > tau) --parts_done_[--x.next_out];
+}
+
+long Partitioned::total_steps() const {
+  long s = 0;
+  for (auto& ps : run_.parts) s += ps->session->total_steps();
+  return s;
+}
+
+void Partitioned::finish(const std::vector<double>& p) {
+  const size_t n = model_.num_states();
   std::vector<Event> kept;
-  for (size_t id = 0; id < res.events.size(); ++id)
-    if (!discarded[id] && res.events[id].root < caller_roots.size()) kept.push_back(std::move(res.events[id]));
-  res.events = std::move(kept);
-  std::stable_sort(res.events.begin(), res.events.end(), [](const Event& a, const Event& b) { return a.t < b.t; });
-  for (Event& e : res.events) {
+  for (size_t id = 0; id < res_.events.size(); ++id)
+    if (!discarded_[id] && res_.events[id].root < n_caller_roots_) kept.push_back(std::move(res_.events[id]));
+  res_.events = std::move(kept);
+  std::stable_sort(res_.events.begin(), res_.events.end(), [](const Event& a, const Event& b) { return a.t < b.t; });
+  for (Event& e : res_.events) {
     e.ydot.assign(n, 0.0);
-    model.rhs(e.t, e.y.data(), p.data(), e.ydot.data());
+    model_.rhs(e.t, e.y.data(), p.data(), e.ydot.data());
   }
-  for (auto& ps : run.parts) {
-    ps->add_counters();
-    const SolverStats& c = ps->counters;
-    res.stats.steps += c.steps;
-    res.stats.rhs_evals += c.rhs_evals;
-    res.stats.jac_evals += c.jac_evals;
-    res.stats.error_test_failures += c.error_test_failures;
-    res.stats.newton_iterations += c.newton_iterations;
-    res.stats.newton_failures += c.newton_failures;
-    res.stats.linear_setups += c.linear_setups;
-  }
-  res.stats.integrators = static_cast<long>(run.parts.size());
+  for (auto& ps : run_.parts) add_counters(res_.stats, ps->session->stats());
+  res_.stats.integrators = static_cast<long>(run_.parts.size());
+}
+
+}  // namespace
+
+SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPartition& P, const SolverOptions& options,
+                            const std::vector<double>& p_given, const std::vector<double>& output_times,
+                            const std::vector<RootSpec>& caller_roots) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  CommandSchedule schedule(model, p_given, output_times.back(), {});
+  const std::vector<RootSpec> roots = schedule.roots(caller_roots);
+  const std::vector<double> y0 = model.initial_state(schedule.p());
+
+  SundialsContext ctx;  // declared before the parts: destroyed after them
+  Run run;
+  run.p = &schedule.p();
+  run.roots = &roots;
+  for (double v : schedule.p()) run.pK.emplace_back(v);
+  build_parts(run, model, P, roots);
+  start_sessions(run, ctx.get(), options, y0, schedule.next_stop());
+
+  SolveResult res;
+  Partitioned driver(run, model, options, output_times, caller_roots.size(), y0, res);
+  ProgressLine progress(options, schedule.t_end(), run.parts.size());
+  run_loop(driver, schedule, progress);
+  driver.finish(schedule.p());
   res.stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return res;
 }

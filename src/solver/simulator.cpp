@@ -2,31 +2,21 @@
 
 #include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
-#include <sundials/sundials_context.h>
-#include <sunlinsol/sunlinsol_band.h>
-#include <sunlinsol/sunlinsol_klu.h>
-#include <sunmatrix/sunmatrix_sparse.h>
-#include <sunlinsol/sunlinsol_dense.h>
-#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
-#include <unistd.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
 #include <chrono>
-#include <cstdint>
 #include <cmath>
-#include <cstdio>
-#include <memory>
+#include <cstdint>
 #include <sstream>
 
 #include "common/error.hpp"
-#include "solver/cvodes_counters.hpp"
-#include "solver/cvodes_setup.hpp"
-#include "solver/matrix_kernels.hpp"
+#include "solver/command_schedule.hpp"
+#include "solver/cvodes_session.hpp"
 #include "solver/partitioned_simulator.hpp"
-#include "solver/serial_kernels.hpp"
-#include "solver/trigger_tracker.hpp"
+#include "solver/run_loop.hpp"
 
 namespace phasmid::solver {
 using model::Jet1;
@@ -239,29 +229,6 @@ int root_cb(sunrealtype, N_Vector y, sunrealtype* g, void* ud) {
   return 0;
 }
 
-// RAII for the SUNDIALS objects of one run.
-struct CvodeHandles {
-  SUNContext ctx = nullptr;
-  void* mem = nullptr;
-  N_Vector y = nullptr;
-  N_Vector* yS = nullptr;
-  int ns = 0;
-  SUNMatrix A = nullptr;
-  SUNLinearSolver LS = nullptr;
-  SUNNonlinearSolver NLS = nullptr;
-  SUNNonlinearSolver NLS_sens = nullptr;
-  ~CvodeHandles() {
-    if (NLS_sens) SUNNonlinSolFree(NLS_sens);
-    if (NLS) SUNNonlinSolFree(NLS);
-    if (mem) CVodeFree(&mem);
-    if (LS) SUNLinSolFree(LS);
-    if (A) SUNMatDestroy(A);
-    if (yS) N_VDestroyVectorArray(yS, ns);
-    if (y) N_VDestroy(y);
-    if (ctx) SUNContext_Free(&ctx);
-  }
-};
-
 }  // namespace
 
 Simulator::Simulator(const OdeModel& model, SolverOptions options) : model_(model), options_(options) {}
@@ -306,359 +273,248 @@ std::vector<double> jacobian_sparse_autodiff(const OdeModel& model, double t, co
   return J;
 }
 
+namespace {
+
+// The newton linear system of the whole model (SolverOptions::linear_solver, Auto by size);
+// the KLU path needs the Jacobian's sparsity pattern, computed here into d.
+void attach_linear_solver(CvodesSession& session, CallbackData& d, const OdeModel& model,
+                          const SolverOptions& options, const std::vector<double>& y0, size_t ns) {
+  const int bw = model.jacobian_half_bandwidth();
+  const bool band = options.linear_solver == LinearSolverKind::Band && bw >= 0;
+  // KLU needs an exact Jacobian function (a difference quotient is only available for dense/band).
+  const bool want_klu = options.linear_solver == LinearSolverKind::Klu ||
+                        (options.linear_solver == LinearSolverKind::Auto &&
+                         d.n > (ns > 0 ? kDenseMaxStatesWithSensitivities : kDenseMaxStates));
+  const bool klu = want_klu && options.jacobian == JacobianKind::AutoDiff;
+  const bool adams = options.integrator == IntegratorKind::Adams;
+  if (klu && !adams) sparsity_pattern(&d, y0);
+  const LinearSystem kind = band ? LinearSystem::Band : klu ? LinearSystem::Sparse : LinearSystem::Dense;
+  CVLsJacFn jac = band ? jac_band_cb : klu ? jac_sparse_cb : jac_dense_cb;
+  if (options.jacobian != JacobianKind::AutoDiff) jac = nullptr;
+  session.set_linear_solver(kind, bw, static_cast<long>(d.row_idx.size()), jac);
+}
+
+// Forward sensitivities from s(0) = dy0/dp: initial states are algebraic (at most linear)
+// functions of the parameters (e.g. initial joint angles), so a central difference is exact.
+void init_sensitivities(CvodesSession& session, const OdeModel& model, const std::vector<double>& p,
+                        const std::vector<size_t>& sens_params) {
+  const size_t n = model.num_states();
+  std::vector<std::vector<double>> s0(sens_params.size(), std::vector<double>(n));
+  std::vector<double> pbar(sens_params.size());
+  for (size_t j = 0; j < sens_params.size(); ++j) {
+    const size_t k = sens_params[j];
+    const auto [yp, ym, hstep] =
+        central_pair(p, k, [&](const std::vector<double>& q) { return model.initial_state(q); });
+    for (size_t i = 0; i < n; ++i) s0[j][i] = (yp[i] - ym[i]) / (2 * hstep);
+    pbar[j] = std::abs(p[k]) > 0 ? std::abs(p[k]) : 1.0;
+  }
+  session.init_sensitivities(s0, sens_rhs_batched_cb, sens_rhs_cb, pbar);
+}
+
+// The whole model as one CVODES system (the Driver of run_loop): each advance integrates to
+// the next output time; triggers fire at once at their crossings.
+class WholeSystem {
+ public:
+  WholeSystem(const OdeModel& model, const SolverOptions& options, const CommandSchedule& schedule,
+              CvodesSession& session, CallbackData& d, const std::vector<double>& output_times,
+              size_t n_caller_roots, SolveResult& res)
+      : model_(model), options_(options), schedule_(schedule), session_(session), d_(d),
+        output_times_(output_times), n_caller_roots_(n_caller_roots), res_(res), ns_(d.sens_params.size()),
+        ydot_(d.n), rootsfound_(d.roots->size()) {
+    if (output_times[0] <= 0.0) {
+      record(0.0, false);
+      k_out_ = 1;
+    }
+  }
+  bool finished(const CommandSchedule&) const { return k_out_ == output_times_.size(); }
+  double advance(CommandSchedule&);
+  void handle_events(CommandSchedule& schedule);
+  bool at_stop(const CommandSchedule& schedule) const {
+    return flag_ == CV_TSTOP_RETURN && std::abs(t_ - schedule.next_stop()) < 1e-9;
+  }
+  void restart(double, const std::vector<double>& dtau_dp, double next_stop) {
+    // The right-hand side changes here: restart from the current state. Sensitivities carry
+    // over, plus a jump if the switch time moves with p.
+    restart_here(dtau_dp);
+    session_.set_stop_time(next_stop);
+  }
+  void record_outputs() {
+    const double tout = output_times_[k_out_ < output_times_.size() ? k_out_ : 0];
+    if (k_out_ < output_times_.size() && flag_ != kNone && std::abs(t_ - tout) < 1e-9 * std::max(1.0, std::abs(tout))) {
+      record(tout, flag_ == CV_SUCCESS);  // events and restarts fetched them already
+      ++k_out_;
+    }
+  }
+
+ private:
+  static constexpr int kNone = -1000;  // no advance yet
+  void fire_triggers(CommandSchedule& schedule, std::vector<double>& dtau_now, bool& restart_now);
+  void record_events();
+  void record(double t, bool fetch_sens);
+  void restart_here(const std::vector<double>& dtau_dp);
+  std::vector<double*> sens_columns() const;
+
+  const OdeModel& model_;
+  const SolverOptions& options_;
+  const CommandSchedule& schedule_;
+  CvodesSession& session_;
+  CallbackData& d_;
+  const std::vector<double>& output_times_;
+  const size_t n_caller_roots_;
+  SolveResult& res_;
+  const size_t ns_;
+  std::vector<double> ydot_;
+  std::vector<int> rootsfound_;
+  size_t k_out_ = 0;
+  double t_ = 0.0;
+  int flag_ = kNone;
+};
+
+double WholeSystem::advance(CommandSchedule&) {
+  flag_ = session_.advance(output_times_[k_out_], &t_, CV_NORMAL);
+  if (flag_ < 0) {
+    std::ostringstream os;
+    os << "CVODES failed at t = " << t_ << " ms: " << cvodes_flag_name(flag_)
+       << " (try --set on the offending parameter, or tighter tolerances)";
+    throw SolverError(os.str());
+  }
+  // Sensitivities are needed at events, at restarts and (if kept) at output times (record
+  // fetches those).
+  if (ns_ && (flag_ == CV_ROOT_RETURN || flag_ == CV_TSTOP_RETURN)) session_.fetch_sensitivities();
+  return t_;
+}
+
+void WholeSystem::handle_events(CommandSchedule& schedule) {
+  if (flag_ != CV_ROOT_RETURN) return;
+  check_cvodes(CVodeGetRootInfo(session_.mem(), rootsfound_.data()), "CVodeGetRootInfo");
+  model_.rhs(t_, N_VGetArrayPointer(session_.y()), schedule.p().data(), ydot_.data());
+  std::vector<double> dtau_now(ns_, 0.0);  // d tau / dp of commands triggered at this event
+  bool restart_now = false;
+  fire_triggers(schedule, dtau_now, restart_now);
+  record_events();
+  if (restart_now) {
+    // A trigger set a command time to this very event: the right-hand side changes here;
+    // s(t+) = s(t-) + (f(t-) - f(t+)) d t_event / dp. The restart is also needed without a
+    // jump: at a root return CVODES' own sensitivities are at its internal time beyond the
+    // root, the ones fetched at the root.
+    restart_here(dtau_now);
+  }
+}
+
+void WholeSystem::fire_triggers(CommandSchedule& schedule, std::vector<double>& dtau_now, bool& restart_now) {
+  const double* y = N_VGetArrayPointer(session_.y());
+  for (size_t k = 0; k < schedule.triggers().size(); ++k) {
+    const int dir = rootsfound_[n_caller_roots_ + k];
+    if (!dir || !schedule.fire(k, t_, dir, y, res_.commands)) continue;
+    const model::CommandTrigger& tr = schedule.triggers()[k];
+    const double when = t_ + tr.delay_ms;
+    for (size_t q : tr.targets) d_.set_parameter(q, when);
+    std::vector<double> dte;
+    if (ns_) {
+      std::vector<double> s_state(ns_);
+      for (size_t j = 0; j < ns_; ++j) s_state[j] = NV_Ith_S(session_.s()[j], tr.state);
+      dte = schedule.crossing_time_sensitivity(k, t_, ydot_[tr.state], s_state);
+    }
+    if (when <= t_ + 1e-9 * std::max(1.0, std::abs(t_))) {
+      // The jump is applied after this event's sensitivities are recorded (they are s(t-)).
+      restart_now = true;
+      schedule.merge_jump(dtau_now, dte, k);
+    } else if (when < schedule.t_end()) {
+      // A later command: one more stop. The sensitivity is continuous at the event; it jumps
+      // at tau with d tau / dp = d t_event / dp found here.
+      if (schedule.add_command_time(when, dte, k) != CommandSchedule::Added::Existing)
+        session_.set_stop_time(schedule.next_stop());
+    }
+  }
+}
+
+void WholeSystem::record_events() {
+  const double* y = N_VGetArrayPointer(session_.y());
+  const size_t n = d_.n;
+  for (size_t r = 0; r < n_caller_roots_; ++r) {
+    if (!rootsfound_[r]) continue;
+    Event e;
+    e.t = t_;
+    e.root = r;
+    e.direction = rootsfound_[r];
+    e.y.assign(y, y + n);
+    e.ydot = ydot_;
+    if (ns_) {
+      e.s.resize(n * ns_);
+      for (size_t i = 0; i < n; ++i)
+        for (size_t j = 0; j < ns_; ++j) e.s[i * ns_ + j] = NV_Ith_S(session_.s()[j], i);
+    }
+    res_.events.push_back(std::move(e));
+  }
+}
+
+void WholeSystem::record(double t, bool fetch_sens) {
+  res_.t.push_back(t);
+  res_.steps_at_output.push_back(session_.total_steps());
+  const size_t n = d_.n;
+  for (size_t i = 0; i < n; ++i) res_.y.push_back(NV_Ith_S(session_.y(), i));
+  if (ns_ && options_.sensitivities_at_outputs) {
+    if (fetch_sens) session_.fetch_sensitivities();
+    for (size_t i = 0; i < n; ++i)
+      for (size_t j = 0; j < ns_; ++j) res_.s.push_back(NV_Ith_S(session_.s()[j], i));
+  }
+}
+
+void WholeSystem::restart_here(const std::vector<double>& dtau_dp) {
+  if (ns_) schedule_.apply_jump(t_, dtau_dp, N_VGetArrayPointer(session_.y()), sens_columns());
+  session_.restart(t_);
+  ++res_.stats.restarts;
+}
+
+std::vector<double*> WholeSystem::sens_columns() const {
+  std::vector<double*> s(ns_);
+  for (size_t j = 0; j < ns_; ++j) s[j] = N_VGetArrayPointer(session_.s()[j]);
+  return s;
+}
+
+}  // namespace
+
 SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector<double>& output_times,
                            const std::vector<RootSpec>& roots, const std::vector<size_t>& sens_params) const {
-  auto wall0 = std::chrono::steady_clock::now();
-  const size_t n = model_.num_states();
+  const auto wall0 = std::chrono::steady_clock::now();
   if (p_given.size() != model_.parameters().size()) throw Error("internal: parameter vector size mismatch");
   if (output_times.empty() || output_times.front() < 0) throw Error("output times must start at t >= 0");
   const size_t ns = sens_params.size();
-  const std::vector<model::CommandTrigger>& triggers = model_.triggers();
   const bool partition = options_.partitioning == Partitioning::On ||
                          (options_.partitioning == Partitioning::Auto && model_.partition_by_default());
   if (partition && ns == 0) {
     const model::ModelPartition parts = model_.partition();
     if (parts.size() > 1) return run_partitioned(model_, parts, options_, p_given, output_times, roots);
   }
-  // A command time set by a trigger is a function of the other parameters (the event time plus
-  // a constant delay), not a free parameter: there is no sensitivity to it.
-  for (const auto& tr : triggers)
-    for (size_t q : tr.targets)
-      if (std::find(sens_params.begin(), sens_params.end(), q) != sens_params.end())
-        throw Error("no sensitivity to " + model_.parameters().at(q).name + ": it is set by the [[triggers]] event " +
-                    tr.event + " (give it a fixed value to differentiate by it)");
-  // Triggered command times are written into this copy when their events occur; until then
-  // they are "never" (no breakpoint, command off).
-  std::vector<double> p = p_given;
-  for (const auto& tr : triggers)
-    for (size_t k : tr.targets) p[k] = model::kUnresolvedMs;
-  // Each trigger watches its own threshold crossing, after the caller's roots (whose indices
-  // in SolveResult::events stay as given); crossings in both directions, for the debounce.
-  std::vector<RootSpec> all_roots = roots;
-  for (const auto& tr : triggers) all_roots.push_back({tr.state, tr.level_scale * p[tr.level_param], 0});
+  CommandSchedule schedule(model_, p_given, output_times.back(), sens_params);
+  const std::vector<RootSpec> all_roots = schedule.roots(roots);
 
   CallbackData d;
   d.model = &model_;
-  d.p = &p;
+  d.p = &schedule.p();
   d.roots = &all_roots;
   d.sens_params = sens_params;
-  d.n = n;
-  d.init_scratch(p);
+  d.n = model_.num_states();
+  d.init_scratch(schedule.p());
 
-  CvodeHandles h;
-  check_cvodes(SUNContext_Create(nullptr, &h.ctx), "SUNContext_Create");
-  h.y = N_VNew_Serial(n, h.ctx);
-  // Clones (CVODES' work vectors, the sensitivity arrays) copy the ops table.
-  if (options_.vector_kernels == VectorKernels::Phasmid) install_serial_kernels(h.y);
-  std::vector<double> y0 = model_.initial_state(p);
-  for (size_t i = 0; i < n; ++i) NV_Ith_S(h.y, i) = y0[i];
-  const bool adams = options_.integrator == IntegratorKind::Adams;
-  h.mem = CVodeCreate(adams ? CV_ADAMS : CV_BDF, h.ctx);
-  if (!h.mem) throw SolverError("CVodeCreate failed");
-  const double t0 = 0.0;
-  check_cvodes(CVodeInit(h.mem, rhs_cb, t0, h.y), "CVodeInit");
-  check_cvodes(CVodeSStolerances(h.mem, options_.rtol, options_.atol), "CVodeSStolerances");
-  check_cvodes(CVodeSetUserData(h.mem, &d), "CVodeSetUserData");
-  apply_step_options(h.mem, options_);
-
-  int bw = model_.jacobian_half_bandwidth();
-  bool band = options_.linear_solver == LinearSolverKind::Band && bw >= 0;
-  // KLU needs an exact Jacobian function (a difference quotient is only available for dense/band).
-  const bool want_klu = options_.linear_solver == LinearSolverKind::Klu ||
-                        (options_.linear_solver == LinearSolverKind::Auto &&
-                         n > (ns > 0 ? kDenseMaxStatesWithSensitivities : kDenseMaxStates));
-  const bool klu = want_klu && options_.jacobian == JacobianKind::AutoDiff;
-  if (adams) {
-    h.NLS = SUNNonlinSol_FixedPoint(h.y, 0, h.ctx);
-    check_cvodes(CVodeSetNonlinearSolver(h.mem, h.NLS), "CVodeSetNonlinearSolver");
-  } else if (band) {
-    h.A = SUNBandMatrix(n, bw, bw, h.ctx);
-    h.LS = SUNLinSol_Band(h.y, h.A, h.ctx);
-  } else if (klu) {
-    sparsity_pattern(&d, y0);
-    h.A = SUNSparseMatrix(n, n, static_cast<sunindextype>(d.row_idx.size()), CSC_MAT, h.ctx);
-    h.LS = SUNLinSol_KLU(h.y, h.A, h.ctx);
-  } else {
-    h.A = SUNDenseMatrix(n, n, h.ctx);
-    h.LS = SUNLinSol_Dense(h.y, h.A, h.ctx);
-  }
-  if (options_.vector_kernels == VectorKernels::Phasmid && h.A) {
-    if (klu) install_sparse_kernels(h.A);
-    else if (!band) install_dense_kernels(h.A, h.LS);
-  }
-  if (!adams) check_cvodes(CVodeSetLinearSolver(h.mem, h.LS, h.A), "CVodeSetLinearSolver");
-  if (!adams && options_.jacobian == JacobianKind::AutoDiff)
-    check_cvodes(CVodeSetJacFn(h.mem, klu ? jac_sparse_cb : band ? jac_band_cb : jac_dense_cb), "CVodeSetJacFn");
-
-  if (ns > 0) {
-    h.ns = static_cast<int>(ns);
-    h.yS = N_VCloneVectorArray(h.ns, h.y);
-    // s(0) = dy0/dp: initial states are algebraic (at most linear) functions of the
-    // parameters (e.g. initial joint angles), so a central difference is exact.
-    for (int j = 0; j < h.ns; ++j) {
-      size_t k = sens_params[j];
-      double hstep = 1e-6 * std::max(1.0, std::abs(p[k]));
-      std::vector<double> pp = p, pm = p;
-      pp[k] += hstep;
-      pm[k] -= hstep;
-      std::vector<double> yp = model_.initial_state(pp), ym = model_.initial_state(pm);
-      for (size_t i = 0; i < n; ++i) NV_Ith_S(h.yS[j], i) = (yp[i] - ym[i]) / (2 * hstep);
-    }
-    int method = options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS;
-    if (options_.sensitivity_rhs == SensitivityRhs::Batched && ns > 1)
-      check_cvodes(CVodeSensInit(h.mem, h.ns, method, sens_rhs_batched_cb, h.yS), "CVodeSensInit");
-    else
-      check_cvodes(CVodeSensInit1(h.mem, h.ns, method, sens_rhs_cb, h.yS), "CVodeSensInit1");
-    if (adams) {
-      h.NLS_sens = method == CV_STAGGERED ? SUNNonlinSol_FixedPointSens(h.ns + 1, h.y, 0, h.ctx)
-                                          : SUNNonlinSol_FixedPointSens(h.ns + 1, h.y, 0, h.ctx);
-      if (method == CV_STAGGERED) check_cvodes(CVodeSetNonlinearSolverSensStg(h.mem, h.NLS_sens), "CVodeSetNonlinearSolverSensStg");
-      else check_cvodes(CVodeSetNonlinearSolverSensSim(h.mem, h.NLS_sens), "CVodeSetNonlinearSolverSensSim");
-    }
-    std::vector<double> pbar(ns);
-    for (size_t j = 0; j < ns; ++j) pbar[j] = std::abs(p[sens_params[j]]) > 0 ? std::abs(p[sens_params[j]]) : 1.0;
-    check_cvodes(CVodeSetSensParams(h.mem, nullptr, pbar.data(), nullptr), "CVodeSetSensParams");
-    if (!options_.sensitivity_atol_scale.empty()) {
-      if (options_.sensitivity_atol_scale.size() != n) throw Error("internal: sensitivity_atol_scale size mismatch");
-      const double f = options_.sensitivity_tolerance_factor;
-      N_Vector* atolS = N_VCloneVectorArray(h.ns, h.y);
-      for (int j = 0; j < h.ns; ++j)
-        for (size_t i = 0; i < n; ++i) NV_Ith_S(atolS[j], i) = f * options_.atol / pbar[j] * options_.sensitivity_atol_scale[i];
-      const int flag = CVodeSensSVtolerances(h.mem, f * options_.rtol, atolS);
-      N_VDestroyVectorArray(atolS, h.ns);
-      check_cvodes(flag, "CVodeSensSVtolerances");
-    } else if (options_.sensitivity_tolerance_factor == 1.0) {
-      check_cvodes(CVodeSensEEtolerances(h.mem), "CVodeSensEEtolerances");
-    } else {
-      const double f = options_.sensitivity_tolerance_factor;
-      std::vector<double> atolS(ns);
-      for (size_t j = 0; j < ns; ++j) atolS[j] = f * options_.atol / pbar[j];
-      check_cvodes(CVodeSensSStolerances(h.mem, f * options_.rtol, atolS.data()), "CVodeSensSStolerances");
-    }
-    check_cvodes(CVodeSetSensErrCon(h.mem, options_.sensitivity_error_control ? SUNTRUE : SUNFALSE), "CVodeSetSensErrCon");
-  }
+  SundialsContext ctx;
+  const std::vector<double> y0 = model_.initial_state(schedule.p());
+  CvodesSession session(ctx.get(), options_, y0.data(), d.n, rhs_cb, &d);
+  attach_linear_solver(session, d, model_, options_, y0, ns);
+  if (ns > 0) init_sensitivities(session, model_, schedule.p(), sens_params);
   std::vector<int> dirs;
-  for (auto& r : all_roots) dirs.push_back(r.direction);
-  if (!all_roots.empty()) {
-    check_cvodes(CVodeRootInit(h.mem, static_cast<int>(all_roots.size()), root_cb), "CVodeRootInit");
-    check_cvodes(CVodeSetRootDirection(h.mem, dirs.data()), "CVodeSetRootDirection");
-    CVodeSetNoInactiveRootWarn(h.mem);
-  }
-
-  const double t_end = output_times.back();
-  std::vector<double> breaks = model_.breakpoints(p, t_end);
-  std::sort(breaks.begin(), breaks.end());
-  breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double b) { return b <= t0 || b >= t_end; }),
-               breaks.end());
-  breaks.push_back(t_end);
-  size_t next_break = 0;
-  // dtau_k/dp_j of each breakpoint: switch times are algebraic functions of the parameters
-  // (command times, switching periods), so central differences are exact; matched by value.
-  std::vector<std::vector<double>> dtau(breaks.size(), std::vector<double>(ns, 0.0));
-  for (size_t j = 0; j < ns; ++j) {
-    size_t k = sens_params[j];
-    double hstep = 1e-6 * std::max(1.0, std::abs(p[k]));
-    std::vector<double> pp = p, pm = p;
-    pp[k] += hstep;
-    pm[k] -= hstep;
-    std::vector<double> bp = model_.breakpoints(pp, t_end), bm = model_.breakpoints(pm, t_end);
-    std::sort(bp.begin(), bp.end());
-    std::sort(bm.begin(), bm.end());
-    auto nearest = [](const std::vector<double>& v, double x) {
-      double best = NAN;
-      for (double b : v)
-        if (std::isnan(best) || std::abs(b - x) < std::abs(best - x)) best = b;
-      return best;
-    };
-    for (size_t b = 0; b + 1 < breaks.size(); ++b) {
-      // The perturbed switch nearest to the nominal one is the same switch as long as it
-      // moved by less than a quarter of the gap to the neighbouring switches.
-      double gap = breaks[b + 1] - breaks[b];
-      if (b > 0) gap = std::min(gap, breaks[b] - breaks[b - 1]);
-      double up = nearest(bp, breaks[b]), dn = nearest(bm, breaks[b]);
-      if (std::abs(up - breaks[b]) > 0.25 * gap || std::abs(dn - breaks[b]) > 0.25 * gap) continue;
-      dtau[b][j] = (up - dn) / (2 * hstep);
-    }
-  }
-  std::vector<double> f_before(n), f_after(n);
-  // The state is continuous at a switch; if the switch time moves with p_j the sensitivity
-  // jumps: s(tau+) = s(tau-) + (f(tau-) - f(tau+)) dtau/dp_j.
-  auto apply_jump = [&](double tau, const std::vector<double>& dtau_dp) {
-    if (std::all_of(dtau_dp.begin(), dtau_dp.end(), [](double v) { return v == 0.0; })) return;
-    const double* yv = N_VGetArrayPointer(h.y);
-    const double delta = 1e-9 * std::max(1.0, std::abs(tau));  // one-sided limits at the switch
-    model_.rhs(tau - delta, yv, p.data(), f_before.data());
-    model_.rhs(tau + delta, yv, p.data(), f_after.data());
-    for (size_t j = 0; j < ns; ++j)
-      if (dtau_dp[j] != 0.0)
-        for (size_t i = 0; i < n; ++i) NV_Ith_S(h.yS[j], i) += (f_before[i] - f_after[i]) * dtau_dp[j];
-  };
-  std::vector<double> dtau_now(ns, 0.0);  // d tau / dp of commands triggered at the current event
-  check_cvodes(CVodeSetStopTime(h.mem, breaks[0]), "CVodeSetStopTime");
+  for (const auto& r : all_roots) dirs.push_back(r.direction);
+  session.init_roots(dirs, root_cb);
+  session.set_stop_time(schedule.next_stop());
 
   SolveResult res;
-  res.n_states = n;
+  res.n_states = d.n;
   res.sens_params = sens_params;
-  std::vector<int> rootsfound(all_roots.size());
-  std::vector<TriggerTracker> trig(triggers.size());
-  const bool show_progress = options_.progress && isatty(STDERR_FILENO);
-  auto last_print = std::chrono::steady_clock::now();
-  std::vector<double> ydot(n);
+  WholeSystem driver(model_, options_, schedule, session, d, output_times, roots.size(), res);
+  ProgressLine progress(options_, schedule.t_end(), 1);
+  run_loop(driver, schedule, progress);
 
-  long steps_before_restarts = 0;  // CVodeReInit resets the step counter
-  // Adds CVODES' counters since the last (re)start to the run's statistics.
-  auto accumulate_counters = [&] { add_cvodes_counters(h.mem, res.stats); };
-  auto total_steps = [&] {
-    long v = 0;
-    CVodeGetNumSteps(h.mem, &v);
-    return steps_before_restarts + v;
-  };
-  double t_sens = 0.0;
-  auto record_output = [&](double t, bool fetch_sens) {
-    res.t.push_back(t);
-    res.steps_at_output.push_back(total_steps());
-    for (size_t i = 0; i < n; ++i) res.y.push_back(NV_Ith_S(h.y, i));
-    if (ns && options_.sensitivities_at_outputs) {
-      if (fetch_sens) check_cvodes(CVodeGetSens(h.mem, &t_sens, h.yS), "CVodeGetSens");
-      for (size_t i = 0; i < n; ++i)
-        for (size_t j = 0; j < ns; ++j) res.s.push_back(NV_Ith_S(h.yS[j], i));
-    }
-  };
-
-  double t = t0;
-  size_t k_out = 0;
-  if (output_times[0] <= t0) {
-    record_output(t0, false);
-    k_out = 1;
-  }
-  while (k_out < output_times.size()) {
-    double tout = output_times[k_out];
-    int flag = CVode(h.mem, tout, h.y, &t, CV_NORMAL);
-    if (flag < 0) {
-      std::ostringstream os;
-      os << "CVODES failed at t = " << t << " ms: " << CVodeGetReturnFlagName(flag)
-         << " (try --set on the offending parameter, or tighter tolerances)";
-      throw SolverError(os.str());
-    }
-    // Sensitivities are needed at events, at restarts and (if kept) at output times
-    // (record_output fetches those).
-    if (ns && (flag == CV_ROOT_RETURN || flag == CV_TSTOP_RETURN)) check_cvodes(CVodeGetSens(h.mem, &t, h.yS), "CVodeGetSens");
-    bool restart_now = false;
-    std::fill(dtau_now.begin(), dtau_now.end(), 0.0);
-    if (flag == CV_ROOT_RETURN) {
-      check_cvodes(CVodeGetRootInfo(h.mem, rootsfound.data()), "CVodeGetRootInfo");
-      model_.rhs(t, N_VGetArrayPointer(h.y), p.data(), ydot.data());
-      for (size_t k = 0; k < triggers.size(); ++k) {
-        const int dir = rootsfound[roots.size() + k];
-        if (!dir) continue;
-        const model::CommandTrigger& tr = triggers[k];
-        if (!trig[k].fires(tr, t, dir, p, N_VGetArrayPointer(h.y))) continue;
-        const double when = t + tr.delay_ms;
-        // d t_event / dp_j by the implicit-function theorem on g = y[state] - scale p[level]:
-        // -(s_state,j - scale [p_j is the level]) / f_state (dg/dt = 0); the delay is constant,
-        // so d tau / dp = d t_event / dp (a jump at tau, below: at once or at the added breakpoint).
-        std::vector<double> dte(ns, 0.0);
-        if (ns) {
-          const double gdot = ydot[tr.state];
-          if (gdot == 0.0 || !std::isfinite(gdot))
-            throw Error("trigger " + tr.event + " at t = " + std::to_string(t) +
-                        " ms is a tangential crossing: its time is not differentiable");
-          for (size_t j = 0; j < ns; ++j)
-            dte[j] = -(NV_Ith_S(h.yS[j], tr.state) - (sens_params[j] == tr.level_param ? tr.level_scale : 0.0)) / gdot;
-        }
-        for (size_t q : tr.targets) {
-          p[q] = when;
-          d.set_parameter(q, when);
-          res.commands.push_back({q, when, k});
-        }
-        // Two commands switching at one time with different d tau / dp have no single jump.
-        auto merge_dtau = [&](std::vector<double>& into) {
-          for (size_t j = 0; j < ns; ++j) {
-            if (into[j] != 0.0 && std::abs(into[j] - dte[j]) > 1e-9 * std::max(1.0, std::abs(dte[j])))
-              throw Error("trigger " + tr.event + ": its command time coincides with another switch that moves "
-                          "differently with " + model_.parameters().at(sens_params[j]).name +
-                          " (no single sensitivity jump)");
-            into[j] = dte[j];
-          }
-        };
-        if (when <= t + 1e-9 * std::max(1.0, std::abs(t))) {
-          // The jump is applied after this event's sensitivities are recorded (they are s(t-)).
-          restart_now = true;
-          merge_dtau(dtau_now);
-        } else if (when < t_end) {
-          // A later command: one more breakpoint. The sensitivity is continuous at the event;
-          // it jumps at tau with d tau / dp = d t_event / dp found here.
-          auto at = std::upper_bound(breaks.begin() + static_cast<long>(next_break), breaks.end() - 1, when);
-          const size_t b = static_cast<size_t>(at - breaks.begin());
-          if (!(b > next_break && std::abs(breaks[b - 1] - when) < 1e-9)) {  // not already a breakpoint
-            breaks.insert(at, when);
-            dtau.insert(dtau.begin() + static_cast<long>(b), std::vector<double>(ns, 0.0));
-            merge_dtau(dtau[b]);
-            check_cvodes(CVodeSetStopTime(h.mem, breaks[next_break]), "CVodeSetStopTime");
-          } else {
-            merge_dtau(dtau[b - 1]);
-          }
-        }
-      }
-      for (size_t r = 0; r < roots.size(); ++r) {
-        if (!rootsfound[r]) continue;
-        Event e;
-        e.t = t;
-        e.root = r;
-        e.direction = rootsfound[r];
-        e.y.assign(N_VGetArrayPointer(h.y), N_VGetArrayPointer(h.y) + n);
-        e.ydot = ydot;
-        if (ns) {
-          e.s.resize(n * ns);
-          for (size_t i = 0; i < n; ++i)
-            for (size_t j = 0; j < ns; ++j) e.s[i * ns + j] = NV_Ith_S(h.yS[j], i);
-        }
-        res.events.push_back(std::move(e));
-      }
-    }
-    if (restart_now) {
-      // A trigger set a command time to this very event: the right-hand side changes here.
-      steps_before_restarts = total_steps();
-      accumulate_counters();
-      check_cvodes(CVodeReInit(h.mem, t, h.y), "CVodeReInit");
-      if (ns) {
-        // The command switches at the event itself: s(t+) = s(t-) + (f(t-) - f(t+)) d t_event / dp.
-        apply_jump(t, dtau_now);
-        // Also needed without a jump: at a root return CVODES' own sensitivities are at its
-        // internal time beyond the root, the ones fetched above at the root.
-        check_cvodes(CVodeSensReInit(h.mem, options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS, h.yS), "CVodeSensReInit");
-      }
-      ++res.stats.restarts;
-    }
-    if (flag == CV_TSTOP_RETURN && next_break + 1 < breaks.size() && std::abs(t - breaks[next_break]) < 1e-9) {
-      // The right-hand side changes here: restart the integrator from the current state.
-      // Sensitivities carry over, plus a jump if the switch time moves with p (below).
-      steps_before_restarts = total_steps();
-      accumulate_counters();
-      check_cvodes(CVodeReInit(h.mem, t, h.y), "CVodeReInit");
-      if (ns) apply_jump(t, dtau[next_break]);
-      if (ns) check_cvodes(CVodeSensReInit(h.mem, options_.sensitivity_method == SensitivityMethod::Staggered ? CV_STAGGERED : CV_SIMULTANEOUS, h.yS), "CVodeSensReInit");
-      ++next_break;
-      check_cvodes(CVodeSetStopTime(h.mem, breaks[next_break]), "CVodeSetStopTime");
-      ++res.stats.restarts;
-    }
-    if (std::abs(t - tout) < 1e-9 * std::max(1.0, std::abs(tout))) {
-      record_output(tout, flag == CV_SUCCESS);  // events and restarts fetched them already
-      ++k_out;
-    }
-    if (show_progress) {
-      auto now = std::chrono::steady_clock::now();
-      if (now - last_print > std::chrono::milliseconds(200)) {
-        std::fprintf(stderr, "\r%s: t = %.0f / %.0f ms (%3.0f%%)", options_.progress_label.c_str(), t, t_end,
-                     100.0 * t / t_end);
-        last_print = now;
-      }
-    }
-  }
-  if (show_progress) std::fprintf(stderr, "\r%s: t = %.0f / %.0f ms (100%%)\n", options_.progress_label.c_str(), t_end, t_end);
-
-  res.stats.steps = total_steps();
-  accumulate_counters();
+  add_counters(res.stats, session.stats());
   res.stats.sens_rhs_evals = d.sens_evals;
   res.stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return res;

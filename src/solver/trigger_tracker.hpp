@@ -2,8 +2,8 @@
 // Which threshold crossing fires a [[triggers]] entry (model::CommandTrigger): the crossings of
 // its threshold are fed in time order; the first one in the trigger's direction, not within
 // debounce_ms of the previous crossing, at or after the earliest time, with the in_stance legs
-// in stance, and the occurrence-th such, fires it. Shared by the whole-system and the
-// partitioned simulator.
+// in stance, and the occurrence-th such, fires it. One per trigger in the CommandSchedule
+// (solver/command_schedule.hpp), which both drivers use.
 #include <cmath>
 #include <vector>
 
