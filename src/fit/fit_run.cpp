@@ -133,7 +133,11 @@ std::string format_result(const ResidualProblem& problem, const FitResult& r) {
   return os.str();
 }
 
-void write_fit_h5(io::H5Writer& out, const ResidualProblem& problem, const FitSpec& spec, const FitResult& r) {
+namespace {
+const char* kParameterUnits = "see /fit/parameter_units";
+
+// /fit: estimates, standard errors, bounds, correlation, residuals.
+void write_estimates(io::H5Writer& out, const ResidualProblem& problem, const FitResult& r) {
   const FitSummary& b = r.best();
   const size_t n = problem.num_parameters();
   std::vector<std::string> names = problem.parameter_names(), units, scales;
@@ -146,7 +150,7 @@ void write_fit_h5(io::H5Writer& out, const ResidualProblem& problem, const FitSp
     hi.push_back(p.upper);
     nominal.push_back(p.nominal);
   }
-  const std::string pu = "see /fit/parameter_units";
+  const std::string pu = kParameterUnits;
   out.ensure_group("/fit");
   out.write("/fit/parameter_names", names);
   out.write("/fit/parameter_units", units);
@@ -178,6 +182,11 @@ void write_fit_h5(io::H5Writer& out, const ResidualProblem& problem, const FitSp
     out.write("/fit/residuals", res, "1 (weighted: (model - target) / tolerance)");
   }
   out.write("/fit/residual_labels", problem.residual_labels());
+}
+
+// /fit: costs and the optimiser's account (attributes, report, summary).
+void write_fit_summary(io::H5Writer& out, const ResidualProblem& problem, const FitSpec& spec, const FitResult& r) {
+  const FitSummary& b = r.best();
   // Summary.
   out.write_scalar("/fit/final_cost", b.final_cost, "1");
   out.write_scalar("/fit/initial_cost", b.initial_cost, "1");
@@ -201,6 +210,13 @@ void write_fit_h5(io::H5Writer& out, const ResidualProblem& problem, const FitSp
   out.write_string("/fit/report", b.report);
   out.write_string("/fit/summary", format_result(problem, r));
 
+}
+
+// /fit/multistart: every start and its optimum, for the waterfall plot.
+void write_multistart(io::H5Writer& out, const ResidualProblem& problem, const FitSpec& spec, const FitResult& r) {
+  const FitSummary& b = r.best();
+  const size_t n = problem.num_parameters();
+  const std::string pu = kParameterUnits;
   // Multistart (waterfall).
   const size_t N = r.multistart.runs.size();
   std::vector<double> sp, ep, fc(N), ic(N);
@@ -231,6 +247,11 @@ void write_fit_h5(io::H5Writer& out, const ResidualProblem& problem, const FitSp
   out.set_attribute("/fit/multistart", "sampling", spec.multistart.sampling == Sampling::Sobol ? std::string("sobol") : std::string("lhs"));
   out.set_attribute("/fit/multistart", "seed", static_cast<double>(spec.multistart.seed));
 
+}
+
+// /fit/targets and /fit/profile/<parameter>.
+void write_targets_and_profiles(io::H5Writer& out, const ResidualProblem& problem, const FitSpec& spec,
+                                const FitResult& r) {
   // Targets at the optimum.
   if (!spec.targets.features.empty()) {
     std::vector<std::string> fn;
@@ -257,6 +278,16 @@ void write_fit_h5(io::H5Writer& out, const ResidualProblem& problem, const FitSp
     out.write(g + "/converged", c, "1");
     out.set_attribute(g, "threshold_95", 3.841458820694124);
   }
+
+}
+}  // namespace
+
+void write_fit_h5(io::H5Writer& out, const ResidualProblem& problem, const FitSpec& spec, const FitResult& r) {
+  const FitSummary& b = r.best();
+  write_estimates(out, problem, r);
+  write_fit_summary(out, problem, spec, r);
+  write_multistart(out, problem, spec, r);
+  write_targets_and_profiles(out, problem, spec, r);
 
   // The model at the optimum (or the start when there is none).
   try {

@@ -49,6 +49,11 @@ Condition after(size_t t) { return {Condition::TimeAfter, 0, t, 0}; }
 Condition before(size_t t) { return {Condition::TimeBefore, 0, t, 0}; }
 }  // namespace
 
+// One leg's parameters, neurons, synapses and sensory couplings, declared in one sequence: this
+// function is longer than the others because the order of its declarations is the order of the
+// leg's states and parameters in every output file and saved config (docs/hdf5.md), and each
+// block reads indices declared by the blocks before it; split, that order would live in the
+// call sequence of several functions instead of one list that reads like docs/model.md's.
 LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::string& leg, const LegOptions& o) {
   Def def{m};
   LegNetwork L;

@@ -38,7 +38,7 @@ class ModelSection {
 
 struct ModelKind {
   std::string name;         // `[model] type = "<name>"`
-  std::string description;  // one line, for `phasmid models` and error messages
+  std::string description;  // one line, for `phasmid models`
   std::set<std::string> keys;  // [model] keys besides `type` and `description`
   std::function<std::unique_ptr<Scenario>(const ModelSection&)> make;
 };
