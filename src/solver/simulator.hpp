@@ -9,13 +9,13 @@
 
 namespace phasmid::solver {
 
-// Auto: dense up to kDenseMaxStates states, KLU (sparse) above: measured 71.7 s (dense) vs
-// 20.7 s (KLU) for 9 s of one leg (78 states); equal step counts (docs/benchmarks.md).
+// Auto: dense up to kDenseMaxStates states, KLU (sparse) above, where the sparse factorisation
+// is the faster at equal step counts (measured in docs/benchmarks.md).
 enum class LinearSolverKind { Auto, Dense, Band, Klu };
 constexpr size_t kDenseMaxStates = 40;
-// With forward sensitivities every corrector iteration solves one linear system per parameter
-// (dense back-substitution was 27 % of the profile for the 26-state network), so KLU pays off
-// earlier: 26-state network, 4 parameters, 1.5 s: 5.7 CPU s dense vs 4.1 s KLU (docs/benchmarks.md).
+// With forward sensitivities every corrector iteration solves one linear system per parameter,
+// so the dense back-substitutions weigh more and KLU pays off at fewer states
+// (docs/benchmarks.md, "Linear solver and Jacobian").
 constexpr size_t kDenseMaxStatesWithSensitivities = 16;
 enum class JacobianKind { AutoDiff, FiniteDifference };
 enum class SensitivityMethod { Staggered, Simultaneous };
@@ -36,10 +36,9 @@ struct SolverOptions {
   IntegratorKind integrator = IntegratorKind::Bdf;
   LinearSolverKind linear_solver = LinearSolverKind::Auto;
   JacobianKind jacobian = JacobianKind::AutoDiff;
-  // Simultaneous: the same cost as staggered and 4x more accurate feature sensitivities on
-  // the 26-state network (0.38 % vs 1.49 % worst deviation; `staggered = true` in
-  // [sensitivity] selects the other). An earlier LBFGS failure with it on the fit-backend test
-  // no longer occurs (docs/benchmarks.md, "After the compiled kernels").
+  // Simultaneous: at the same cost as staggered, more accurate feature sensitivities on the
+  // networks (docs/benchmarks.md, "After the compiled kernels"); `staggered = true` in
+  // [sensitivity] selects the other.
   SensitivityMethod sensitivity_method = SensitivityMethod::Simultaneous;
   SensitivityRhs sensitivity_rhs = SensitivityRhs::Batched;
   bool sensitivity_error_control = true;
