@@ -10,7 +10,7 @@
 #include <string>
 
 #include "config/config.hpp"
-#include "fit/fit_config.hpp"
+#include "config/fit_section.hpp"
 #include "fit/fit_problem.hpp"
 #include "fit/optimizer.hpp"
 #include "build_info.hpp"

@@ -10,7 +10,7 @@
 #include "config/config.hpp"
 #include "dist/executor.hpp"
 #include "dist/session.hpp"
-#include "fit/fit_config.hpp"
+#include "config/fit_section.hpp"
 #include "fit/fit_run.hpp"
 #include "io/h5_file.hpp"
 

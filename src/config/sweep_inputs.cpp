@@ -1,5 +1,7 @@
 #include "config/sweep_inputs.hpp"
 
+#include "config/sweep_section.hpp"
+
 #include "common/error.hpp"
 
 namespace phasmid::config {
@@ -15,7 +17,7 @@ sweep::SweepInputs sweep_inputs(const Config& cfg, const std::vector<std::string
   in.sets = sets;
   in.make = [cfg, sets, spec = in.spec](std::size_t combo) {
     try {
-      return build_scenario(spec.config_for(cfg, combo), sets);
+      return build_scenario(sweep::config_for(cfg, spec, combo), sets);
     } catch (const Error& e) {
       std::string at;
       for (std::size_t k = 0; k < spec.options.size(); ++k) at = spec.options[k].where[spec.option_value(combo, k)];

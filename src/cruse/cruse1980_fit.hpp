@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "cruse/cruse1980_features.hpp"
-#include "fit/fit_config.hpp"
+#include "config/fit_section.hpp"
 #include "fit/residual_problem.hpp"
 
 namespace phasmid::cruse {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "fit/fit_config.hpp"
+#include "fit/fit_spec.hpp"
 #include "fit/uncertainty.hpp"
 
 namespace phasmid::io {

@@ -20,7 +20,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sweep/sweep_config.hpp"
+#include "sweep/sweep_spec.hpp"
 
 namespace phasmid::gsa {
 

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "fit/fit_config.hpp"
+#include "config/fit_section.hpp"
 #include "fit/fit_problem.hpp"
 #include "io/trajectory_writer.hpp"
 

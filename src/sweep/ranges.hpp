@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "io/h5_file.hpp"
-#include "sweep/sweep_config.hpp"
+#include "sweep/sweep_spec.hpp"
 
 namespace phasmid::sweep {
 

@@ -19,7 +19,7 @@
 #include "features/features.hpp"
 #include "io/h5_file.hpp"
 #include "model/parameters.hpp"
-#include "sweep/sweep_config.hpp"
+#include "sweep/sweep_spec.hpp"
 
 namespace phasmid::sweep {
 

@@ -9,7 +9,7 @@
 
 #include "common/error.hpp"
 #include "config/config.hpp"
-#include "fit/fit_config.hpp"
+#include "config/fit_section.hpp"
 #include "fit/fit_problem.hpp"
 #include "fit/kinematic_data.hpp"
 #include "fit/parameter_table.hpp"

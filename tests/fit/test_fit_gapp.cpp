@@ -4,7 +4,7 @@
 // -20 %). Expensive: the 26-state network is simulated for 4 s per evaluation (~5 s CPU).
 #include <gtest/gtest.h>
 
-#include "fit/fit_config.hpp"
+#include "config/fit_section.hpp"
 #include "fit/fit_run.hpp"
 #include "fit_test_util.hpp"
 

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "fit/fit_config.hpp"
+#include "config/fit_section.hpp"
 #include "fit/fit_run.hpp"
 #include "fit_test_util.hpp"
 #include "io/h5_file.hpp"

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "common/error.hpp"
-#include "fit/fit_config.hpp"
+#include "config/fit_section.hpp"
 #include "fit/kinematic_data.hpp"
 #include "fit/optimizer.hpp"
 #include "fit/parameter_table.hpp"

@@ -10,7 +10,7 @@
 #include <random>
 #include <sstream>
 
-#include "fit/fit_config.hpp"
+#include "config/fit_section.hpp"
 #include "fit/fit_run.hpp"
 #include "fit_test_util.hpp"
 

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "features/features.hpp"
-#include "fit/fit_config.hpp"
+#include "config/fit_section.hpp"
 #include "fit/fit_run.hpp"
 #include "fit_test_util.hpp"
 

@@ -12,7 +12,7 @@
 #include "common/error.hpp"
 #include "config/config.hpp"
 #include "config/sweep_inputs.hpp"
-#include "fit/fit_config.hpp"
+#include "config/fit_section.hpp"
 #include "fit/fit_run.hpp"
 #include "io/h5_file.hpp"
 #include "scenario/registry.hpp"

@@ -13,6 +13,7 @@
 #include <functional>
 
 #include "solver/simulator.hpp"
+#include "../rising_trigger.hpp"
 
 using namespace phasmid;
 
@@ -27,14 +28,7 @@ class TriggeredStep : public model::OdeModelT<TriggeredStep> {
     params_.add({"cmd.tau", model::kUnresolvedMs, "ms", "test", "command time (triggered)"});
     params_.add({"cmd.level", 80.0, "1", "test", "trigger level"});
     add_state("cmd.y", "1");
-    model::CommandTrigger tr;
-    tr.event = "cmd.y rises through cmd.level";
-    tr.targets = {3};
-    tr.state = 0;
-    tr.level_param = 4;
-    tr.direction = +1;
-    tr.delay_ms = delay_ms;
-    set_triggers({tr});
+    set_triggers({test::rising_trigger("cmd.y rises through cmd.level", 3, 0, 4, delay_ms)});
   }
   std::string kind() const override { return "triggered_step"; }
   std::vector<double> initial_state(const std::vector<double>&) const override { return {0.0}; }

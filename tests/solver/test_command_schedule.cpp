@@ -10,6 +10,7 @@
 #include "common/error.hpp"
 #include "solver/command_schedule.hpp"
 #include "solver/cvodes_session.hpp"
+#include "../rising_trigger.hpp"
 
 using namespace phasmid;
 
@@ -28,13 +29,7 @@ class TwoSwitches : public model::OdeModelT<TwoSwitches> {
     params_.add({"s.level", 40.0, "1", "test", "trigger threshold"});
     params_.add({"s.late", 300.0, "ms", "test", "triggered command time"});
     add_state("s.y", "1");
-    model::CommandTrigger tr;
-    tr.event = "s.rise";
-    tr.targets = {5};
-    tr.state = 0;
-    tr.level_param = 4;
-    tr.direction = +1;
-    tr.delay_ms = 5.0;
+    model::CommandTrigger tr = test::rising_trigger("s.rise", 5, 0, 4, 5.0);
     tr.debounce_ms = 0.0;
     triggers_ = {tr};
   }

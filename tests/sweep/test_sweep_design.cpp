@@ -8,7 +8,7 @@
 #include "common/error.hpp"
 #include "config/config.hpp"
 #include "sweep/design.hpp"
-#include "sweep/sweep_config.hpp"
+#include "config/sweep_section.hpp"
 
 using namespace phasmid;
 
@@ -184,8 +184,8 @@ values = [10.0, 12.5]
                                             "name = \"middle.fti.b_v\"\nvalues = [1]\n", "s.toml");
   auto m = config::build_model(cfg);
   auto spec = sweep::parse_sweep(cfg, m->parameters(), config::simulation_settings(cfg));
-  EXPECT_EQ(*spec.config_for(cfg, 1).table["model"]["start_phase"].value<std::string>(), "extension");
-  EXPECT_EQ(*spec.config_for(cfg, 0).table["model"]["start_phase"].value<std::string>(), "flexion");
+  EXPECT_EQ(*sweep::config_for(cfg, spec, 1).table["model"]["start_phase"].value<std::string>(), "extension");
+  EXPECT_EQ(*sweep::config_for(cfg, spec, 0).table["model"]["start_phase"].value<std::string>(), "flexion");
 
   EXPECT_NE(error_of("[sweep]\n[[sweep.parameter]]\nnames = [\"middle.fti.b_v\", \"middle.fti.d\"]\nvalues = [[1, 0.3], [2]]\n")
                 .find("s.toml:11: each row of 'values' needs 2 numbers"),

@@ -16,6 +16,7 @@
 
 #include "common/error.hpp"
 #include "config/sweep_inputs.hpp"
+#include "config/sweep_section.hpp"
 #include "io/h5_file.hpp"
 #include "sweep/sweep_runner.hpp"
 #include "build_info.hpp"

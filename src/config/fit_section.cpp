@@ -1,4 +1,4 @@
-#include "fit/fit_config.hpp"
+#include "config/fit_section.hpp"
 
 #include <algorithm>
 #include <filesystem>

@@ -1,44 +1,14 @@
 #pragma once
-// The [fit] section of a scenario config (docs/fit.md) and the command-line overrides of
-// `phasmid fit`. Other verbs ignore [fit]; `phasmid fit` ignores sections it does not use.
-#include <cstdint>
+// The [fit] section of a scenario config (docs/fit.md), read into a fit::FitSpec. Other verbs
+// ignore [fit]; `phasmid fit` ignores sections it does not use.
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "config/config.hpp"
-#include "fit/fit_problem.hpp"
-#include "fit/multistart.hpp"
-#include "fit/optimizer.hpp"
+#include "fit/fit_spec.hpp"
 
 namespace phasmid::fit {
-
-struct FitSpec {
-  std::vector<FitParameter> parameters;
-  Targets targets;
-  ProblemSettings problem;
-  OptimizerOptions optimizer;
-  MultistartOptions multistart;
-  bool absolute_sigma = false;
-  std::vector<std::string> profile;  // parameter ids to profile
-  size_t profile_points = 11;
-  double profile_span = 3.0;         // +- standard errors
-  double output_dt_ms = 1.0;         // best-fit trajectory
-  std::string target_set = "default";
-  std::vector<std::string> inputs;   // data and parameter files read
-};
-
-struct FitOverrides {
-  std::string data;          // --data
-  std::string data_format;   // --data-format csv|anipose
-  std::string parameters;    // --parameters
-  std::string optimizer;     // --optimizer
-  long multistart = -1;      // --multistart
-  long seed = -1;            // --seed
-  std::string target_set;    // --target-set
-  long max_iterations = -1;  // --max-iterations
-  int threads = 0;           // -j (0: [fit] threads, else OpenMP's default)
-};
 
 // `model` must be the model built from the same config (nominal values default to its values).
 FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, const FitOverrides& overrides = {});

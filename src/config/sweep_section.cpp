@@ -1,4 +1,4 @@
-#include "sweep/sweep_config.hpp"
+#include "config/sweep_section.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,16 +13,6 @@ using config::number;
 using config::where;
 using config::check_keys;
 
-std::vector<std::string> SweepSpec::names() const {
-  std::vector<std::string> v;
-  for (auto& p : parameters) v.push_back(p.name);
-  return v;
-}
-std::vector<std::string> SweepSpec::units() const {
-  std::vector<std::string> v;
-  for (auto& p : parameters) v.push_back(p.unit);
-  return v;
-}
 
 namespace {
 constexpr std::size_t kMaxPoints = 10'000'000;
@@ -84,11 +74,6 @@ void parse_options(const config::Config& cfg, const toml::table& st, SweepSpec& 
 }
 }  // namespace
 
-double map_unit(const SweptParameter& p, double u) {
-  double x = p.log_scale ? std::exp(std::log(p.lower) + u * (std::log(p.upper) - std::log(p.lower)))
-                         : p.lower + u * (p.upper - p.lower);
-  return std::min(std::max(x, p.lower), p.upper);  // rounding never leaves [lower, upper]
-}
 
 namespace {
 
@@ -358,28 +343,17 @@ SweepSpec parse_sweep(const config::Config& cfg, const model::ParameterSet& para
   return spec;
 }
 
-std::size_t SweepSpec::option_value(std::size_t combo, std::size_t k) const {
-  std::size_t rest = combo;
-  for (std::size_t j = options.size(); j-- > k + 1;) rest /= options[j].labels.size();
-  return rest % options[k].labels.size();
-}
 
-std::string SweepSpec::describe_combo(std::size_t combo) const {
-  std::string s;
-  for (std::size_t k = 0; k < options.size(); ++k)
-    s += (s.empty() ? "" : ", ") + options[k].name + " = " + options[k].labels[option_value(combo, k)];
-  return s;
-}
 
-config::Config SweepSpec::config_for(const config::Config& cfg, std::size_t combo) const {
+config::Config config_for(const config::Config& cfg, const SweepSpec& spec, std::size_t combo) {
   config::Config c = cfg;
-  if (options.empty()) return c;
+  if (spec.options.empty()) return c;
   toml::table* mt = c.table["model"].as_table();
   if (!mt) throw Error(cfg.path + ": missing [model] section");
   const toml::array* arr = cfg.table["sweep"]["option"].as_array();
-  for (std::size_t k = 0; k < options.size(); ++k) {
-    const toml::node* v = arr->get(k)->as_table()->get("values")->as_array()->get(option_value(combo, k));
-    v->visit([&](auto&& x) { mt->insert_or_assign(options[k].name, x); });
+  for (std::size_t k = 0; k < spec.options.size(); ++k) {
+    const toml::node* v = arr->get(k)->as_table()->get("values")->as_array()->get(spec.option_value(combo, k));
+    v->visit([&](auto&& x) { mt->insert_or_assign(spec.options[k].name, x); });
   }
   return c;
 }

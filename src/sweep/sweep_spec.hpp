@@ -1,11 +1,11 @@
 #pragma once
-// The [sweep] section of a scenario config (docs/sweep.md): which named parameters to vary,
-// over which design, and how long to simulate each point.
+// A sweep's design (docs/sweep.md): which named parameters vary, over which points, with which
+// [model] option combinations, and how long each point runs. config/sweep_section.hpp reads
+// it from a config's [sweep] section.
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "config/config.hpp"
 
 namespace phasmid::sweep {
 
@@ -51,18 +51,11 @@ struct SweepSpec {
   std::size_t combo_of(std::size_t point) const { return point / n_design; }
   // Index of option k's value in combination c (first option slowest).
   std::size_t option_value(std::size_t combo, std::size_t k) const;
-  // The config with combination c's option values written into [model].
-  config::Config config_for(const config::Config& cfg, std::size_t combo) const;
   std::string describe_combo(std::size_t combo) const;  // e.g. "gait = tripod"
 };
 
 // Unit interval -> parameter value: linear in [lower, upper], or in log with log_scale;
 // clamped so that rounding never leaves [lower, upper]. Shared with gsa/sampling.
 double map_unit(const SweptParameter& p, double u);
-
-// Parses and validates [sweep] against the model's parameters (names, admissible ranges);
-// every error names file:line. t_end_ms / discard_ms default to [simulation]'s.
-SweepSpec parse_sweep(const config::Config& cfg, const model::ParameterSet& params,
-                      const config::SimulationSettings& sim);
 
 }  // namespace phasmid::sweep

@@ -1,0 +1,42 @@
+#pragma once
+// What a fit does (docs/fit.md): the estimated parameters, targets, optimiser, multistart and
+// profiles (FitSpec), and the command-line overrides of `phasmid fit` (FitOverrides).
+// config/fit_section.hpp reads them from a config's [fit] section.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "fit/fit_problem.hpp"
+#include "fit/multistart.hpp"
+#include "fit/optimizer.hpp"
+
+namespace phasmid::fit {
+
+struct FitSpec {
+  std::vector<FitParameter> parameters;
+  Targets targets;
+  ProblemSettings problem;
+  OptimizerOptions optimizer;
+  MultistartOptions multistart;
+  bool absolute_sigma = false;
+  std::vector<std::string> profile;  // parameter ids to profile
+  size_t profile_points = 11;
+  double profile_span = 3.0;         // +- standard errors
+  double output_dt_ms = 1.0;         // best-fit trajectory
+  std::string target_set = "default";
+  std::vector<std::string> inputs;   // data and parameter files read
+};
+
+struct FitOverrides {
+  std::string data;          // --data
+  std::string data_format;   // --data-format csv|anipose
+  std::string parameters;    // --parameters
+  std::string optimizer;     // --optimizer
+  long multistart = -1;      // --multistart
+  long seed = -1;            // --seed
+  std::string target_set;    // --target-set
+  long max_iterations = -1;  // --max-iterations
+  int threads = 0;           // -j (0: [fit] threads, else OpenMP's default)
+};
+
+}  // namespace phasmid::fit
