@@ -2,7 +2,9 @@
 //                    [--multistart N] [-o OUT.h5]   (docs/fit.md; under mpirun: docs/cluster.md)
 // Exit status: 0 converged, 3 finished without convergence (result written, summary says why),
 // 1 bad input (one line on stderr).
+#include <cmath>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "app/options.hpp"
 #include "app/verb.hpp"
@@ -20,8 +22,22 @@ struct FitArgs {
   std::string config, out = "fit.h5";
   std::vector<std::string> sets, profile;
   fit::FitOverrides ov;
-  bool quiet = false;
+  bool quiet = false, json = false;
 };
+
+// The estimates on stdout: name, value, standard error (null where undefined), unit.
+void print_estimates_json(const fit::ResidualProblem& problem, const fit::FitResult& r) {
+  auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+  nlohmann::json est = nlohmann::json::array();
+  const auto& se = r.uncertainty.standard_error;
+  for (size_t j = 0; j < problem.num_parameters(); ++j)
+    est.push_back({{"name", problem.parameter_names()[j]}, {"estimate", num(r.estimate[j])},
+                   {"standard_error", se.size() > static_cast<long>(j) ? num(se[j]) : nlohmann::json()},
+                   {"unit", problem.parameter_unit(j)}});
+  const fit::FitSummary& b = r.best();
+  std::cout << nlohmann::json{{"converged", b.converged}, {"final_cost", num(b.final_cost)}, {"parameters", est}}.dump(2)
+            << "\n";
+}
 
 // The same for every model kind: the kind makes the residual problem of [fit]; optimise,
 // write /fit, print the summary.
@@ -42,6 +58,7 @@ int run_fit_verb(const FitArgs& a) {
   fit::write_fit_h5(w, *problem, spec, result);
   w.commit();
   const fit::FitSummary& b = result.best();
+  if (a.json) print_estimates_json(*problem, result);
   if (!a.quiet) std::cerr << fit::format_result(*problem, result) << "phasmid fit: -> " << a.out << "\n";
   if (!a.quiet && dist::size() > 1)
     std::cerr << "phasmid fit: starts per rank\n" << dist::format_work_summary(result.multistart.work, "starts");
@@ -70,6 +87,7 @@ const RegisterVerb reg{{"fit", "Fit parameters to feature targets, switch condit
                           add_sets(sub, a->sets);
                           add_threads(sub, a->ov.threads);
                           add_quiet(sub, a->quiet);
+                          add_json(sub, a->json);
                           return std::function<int()>([a] { return run_fit_verb(*a); });
                         }}};
 }  // namespace

@@ -22,5 +22,11 @@ for cfg in "$SRC"/configs/*.toml; do
   fi
   echo "ok $name ($count features)"
 done
+# every kind the configs use is listed by `phasmid models`
+kinds=$("$PHASMID" models --json)
+for kind in mechanical_joint coupled_ctr_fti single_joint leg three_legs curve_walking cruse1980; do
+  grep -q "\"type\": \"$kind\"" <<<"$kinds" || { echo "FAIL models: $kind not listed"; fail=1; }
+done
+"$PHASMID" models "$SRC/configs/cruse1980_table1.toml" | grep -q "^table1_stable " || { echo "FAIL models: catalogue of cruse1980_table1"; fail=1; }
 [ "$n" -ge 30 ] || { echo "FAIL: only $n configs found in $SRC/configs"; fail=1; }
 exit $fail
