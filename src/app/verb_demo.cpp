@@ -100,7 +100,7 @@ int run_demo(const std::string& dir_arg) {
   return 0;
 }
 
-const RegisterVerb reg{{"demo", "The main job on embedded defaults: simulate, fit, sensitivities, sweep, reports",
+const RegisterVerb reg{{"demo", "Run the main job on embedded defaults: simulate, fit, sensitivities, sweep, reports",
                         [](CLI::App& sub) {
                           auto dir = std::make_shared<std::string>();
                           sub.add_option("-o,--output", *dir, "output directory (default demo_output)");

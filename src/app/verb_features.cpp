@@ -2,9 +2,9 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <nlohmann/json.hpp>
 
 #include "app/verb.hpp"
+#include "app/write_output.hpp"
 #include "common/error.hpp"
 #include "features/features.hpp"
 #include "io/h5_file.hpp"
@@ -23,11 +23,7 @@ int run_features(const std::string& path, bool json) {
   if (!phasmid_file) throw Error(path + ": not a phasmid file (no phasmid_version attribute)");
   std::vector<features::Feature> fs = features::read_features_h5(in);
   if (json) {
-    nlohmann::json out = nlohmann::json::array();
-    for (auto& f : fs)
-      out.push_back({{"name", f.name}, {"value", std::isfinite(f.value) ? nlohmann::json(f.value) : nlohmann::json()},
-                     {"unit", f.unit}});
-    std::cout << out.dump(2) << "\n";
+    print_features_json(fs);
     return 0;
   }
   size_t w = 7;
@@ -37,7 +33,7 @@ int run_features(const std::string& path, bool json) {
   return 0;
 }
 
-const RegisterVerb reg{{"features", "print the gait features of a run (period, phase durations and ratios, extremal angles)",
+const RegisterVerb reg{{"features", "Print the features stored in a run file (period, phase durations and ratios, extremal angles, ...)",
                         [](CLI::App& sub) -> std::function<int()> {
                           auto path = std::make_shared<std::string>();
                           auto json = std::make_shared<bool>(false);

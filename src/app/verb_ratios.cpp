@@ -39,7 +39,7 @@ int run_ratios(const RatiosArgs& a) {
   return 0;
 }
 
-const RegisterVerb reg{{"ratios", "Spring-constant ratios at stationary extremal angles (eqs. 2.43-2.45)",
+const RegisterVerb reg{{"ratios", "Print the spring-constant ratios at stationary extremal angles (eqs. 2.43-2.45)",
                         [](CLI::App& sub) {
                           auto a = std::make_shared<RatiosArgs>();
                           sub.add_option("--joint", a->joint, "thc, ctr or fti")->required();

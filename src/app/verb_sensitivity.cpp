@@ -38,7 +38,7 @@ int run_sensitivity(const SensitivityArgs& a) {
   return 0;
 }
 
-const RegisterVerb reg{{"sensitivity", "Forward sensitivities of a scenario's trajectory and gait features (CVODES)",
+const RegisterVerb reg{{"sensitivity", "Compute forward sensitivities of a scenario's trajectory and gait features (CVODES)",
                         [](CLI::App& sub) {
                           auto a = std::make_shared<SensitivityArgs>();
                           add_config_arg(sub, a->config, "scenario config (TOML) with a [sensitivity] section");

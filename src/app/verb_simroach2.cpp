@@ -65,7 +65,7 @@ int damping_cmd(const DampingOptions& o) {
 }
 
 phasmid::app::RegisterVerb reg{
-    {"simroach2", "SimRoach2 tables and design tools (check-muscles, damping)", [](CLI::App& sub) {
+    {"simroach2", "Tools for the SimRoach2 robot data, not a model run: check-muscles (Table 3), damping (eqs. 15-20)", [](CLI::App& sub) {
        sub.require_subcommand(1);
        auto json = std::make_shared<bool>(false);
        auto* check = sub.add_subcommand("check-muscles", "Table 3: active force at -60 mV of all 60 muscles");
