@@ -15,6 +15,7 @@
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
 #include "sweep/ranges.hpp"
+#include "report/gsa_panels.hpp"
 
 namespace phasmid::report {
 namespace {
@@ -587,6 +588,8 @@ nlohmann::json extract(const std::string& h5_path, std::size_t max_points) {
         extract_fit(r, out, max_points);
       else if (top == "sweep")
         extract_sweep(r, out);
+      else if (top == "gsa")
+        out["gsa"] = extract_gsa(r);
       else
         note_ignored(out, p);
     } catch (const Error& e) {
