@@ -35,6 +35,10 @@ void print_result(const gsa::GsaResult& r) {
     std::cout << fmt::format("{} ({}): {} of {} {} used ({} non-finite outputs, {} dropped)\n", f.name,
                              f.unit.empty() ? "-" : f.unit, c.n_used, c.n_used + c.n_dropped,
                              sobol ? "base rows" : "trajectories", c.n_nonfinite, c.n_dropped);
+    if (sobol && c.n_used >= 2 && !(f.sobol.variance > 0)) {
+      std::cout << "  constant over the design: no variance to apportion (indices NaN)\n";
+      continue;
+    }
     if (sobol) std::cout << fmt::format("  {:<28} {:>19} {:>19}   ({:g} % intervals)\n", "parameter", "S1", "ST", level);
     else std::cout << fmt::format("  {:<28} {:>19} {:>10} {:>10}   ({:g} % intervals)\n", "parameter", "mu*", "mu", "sigma", level);
     for (std::size_t j = 0; j < r.parameters.size(); ++j) {
