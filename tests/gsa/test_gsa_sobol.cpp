@@ -153,6 +153,31 @@ TEST(GsaSobol, NonFiniteOutputsDropTheirBlock) {
   EXPECT_EQ(with_nan.S2[2], clean.S2[2]);
 }
 
+// A rare 0/1 output: only base row 0's block varies, so about a third of the resamples (those
+// without row 0) have no variance and no indices. The interval comes from the others.
+TEST(GsaSobol, BootstrapSkipsResamplesWithoutVariance) {
+  const std::size_t dim = 2, block = dim + 2, n = 20;
+  std::vector<double> y(n * block, 0.0);
+  y[0] = 1.0;          // f(A_0) = 1: x1 and x2 both matter through AB rows equal to 0
+  y[block - 1] = 1.0;  // f(B_0) = 1
+  y[1] = 1.0;          // f(AB(1)_0) = 1: changing x1 alone keeps the output
+  BootstrapOptions bo;
+  bo.resamples = 200;
+  bo.seed = 5;
+  const SobolIndices s = sobol_analyze(dim, false, y, bo);
+  for (std::size_t j = 0; j < dim; ++j) {
+    EXPECT_TRUE(std::isfinite(s.ST[j])) << j;
+    EXPECT_TRUE(std::isfinite(s.ST_conf[j])) << "interval from the resamples that contain row 0, x" << j + 1;
+  }
+  EXPECT_GT(s.ST_conf[1], 0.0);
+  EXPECT_EQ(s.ST_conf[0], 0.0) << "x1's ST is 0 in every resample";
+  // Analytic on these outputs: V = var of {1, 0 x 19, 1, 0 x 19} (divisor 40) = 2/40 - (2/40)^2;
+  // ST_2 = mean((f_A - f_AB(2))^2) / (2V) = (1/20) / (2V).
+  const double V = 2.0 / 40 - (2.0 / 40) * (2.0 / 40);
+  EXPECT_NEAR(s.ST[1], (1.0 / 20) / (2 * V), 1e-12);
+  EXPECT_NEAR(s.ST[0], 0.0, 1e-12);
+}
+
 TEST(GsaSobol, RejectsOutputsThatAreNotWholeBlocks) {
   EXPECT_THROW(sobol_analyze(3, true, std::vector<double>(17, 1.0), BootstrapOptions{}), phasmid::Error);
   BootstrapOptions bad;
