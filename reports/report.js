@@ -638,14 +638,18 @@
   var whiskers = {
     id: 'phasmidWhiskers',
     afterDatasetsDraw: function (chart) {
-      var ctx = chart.ctx, y = chart.scales.y;
+      var ctx = chart.ctx, y = chart.scales.y, area = chart.chartArea;
+      // Whiskers wider than the axis (small N) are cut at the plot area: they run off it.
+      ctx.save();
+      ctx.beginPath();
+      ctx.rect(area.left, area.top, area.right - area.left, area.bottom - area.top);
+      ctx.clip();
       chart.data.datasets.forEach(function (ds, i) {
         if (!ds.errors || chart.getDatasetMeta(i).hidden) return;
         chart.getDatasetMeta(i).data.forEach(function (bar, k) {
           var v = ds.data[k], e = ds.errors[k];
           if (v === null || e === null || e === undefined) return;
           var top = y.getPixelForValue(v + e), bottom = y.getPixelForValue(v - e), w = Math.max(3, (bar.width || 8) / 4);
-          ctx.save();
           ctx.strokeStyle = '#1d2330';
           ctx.lineWidth = 1.2;
           ctx.beginPath();
@@ -653,9 +657,9 @@
           ctx.moveTo(bar.x - w, top); ctx.lineTo(bar.x + w, top);
           ctx.moveTo(bar.x - w, bottom); ctx.lineTo(bar.x + w, bottom);
           ctx.stroke();
-          ctx.restore();
         });
       });
+      ctx.restore();
     }
   };
   function gsaBars(parent, g, ft, sobol) {
@@ -674,11 +678,11 @@
   function gsaHeatmap(sec, g) {
     var cells = [], max = 0;
     g.features.forEach(function (ft) { g.parameter_names.forEach(function (p, j) { if (ft.ST[j] !== null) max = Math.max(max, ft.ST[j]); }); });
-    max = max || 1;
+    max = Math.min(max, 1) || 1;  // indices are fractions of a variance: above 1 is sampling noise, drawn saturated
     g.features.forEach(function (ft) {
       g.parameter_names.forEach(function (p, j) {
         var v = ft.ST[j];
-        cells.push({ x: p, y: ft.name, v: v, color: v === null ? '#ddd' : ramp(VIRIDIS, Math.max(0, v) / max) });
+        cells.push({ x: p, y: ft.name, v: v, color: v === null ? '#ddd' : ramp(VIRIDIS, Math.min(1, Math.max(0, v) / max)) });
       });
     });
     var id = 'fig-gsa-heatmap', f = figure(sec, id, 'Total Sobol\' index ST of every feature (rows) with respect to every parameter (columns); grey: undefined', 80 + 28 * g.features.length);
