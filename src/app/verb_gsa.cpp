@@ -36,7 +36,7 @@ void print_result(const gsa::GsaResult& r) {
                              f.unit.empty() ? "-" : f.unit, c.n_used, c.n_used + c.n_dropped,
                              sobol ? "base rows" : "trajectories", c.n_nonfinite, c.n_dropped);
     if (sobol && c.n_used >= 2 && !(f.sobol.variance > 0)) {
-      std::cout << "  constant over the design: no variance to apportion (indices NaN)\n";
+      std::cout << "  no variance over the A and B rows (constant there): indices undefined (NaN)\n";
       continue;
     }
     if (sobol) std::cout << fmt::format("  {:<28} {:>19} {:>19}   ({:g} % intervals)\n", "parameter", "S1", "ST", level);
