@@ -86,7 +86,20 @@ def _load_h5(path):
 
 class Result:
     """Base of every phasmid result: ``.save(path)`` writes the HDF5 file the CLI writes for the
-    same run, ``.report(path)`` the HTML report ``phasmid report`` makes of it."""
+    same run, ``.report(path)`` the HTML report ``phasmid report`` makes of it; ``model`` and
+    ``config`` are the file's root attributes (the model kind, the resolved config text)."""
+
+    attrs = {}
+
+    @property
+    def config(self):
+        """The resolved config text (config plus overrides) the result was made from."""
+        return self.attrs.get("/", {}).get("config")
+
+    @property
+    def model(self):
+        """The model kind that produced the result (None where a file does not record one)."""
+        return self.attrs.get("/", {}).get("model")
 
     def save(self, path):
         """Write the result as a phasmid HDF5 file (docs/hdf5.md) at `path`; returns `path`."""
@@ -114,16 +127,6 @@ class FileResult(Result):
             self._bytes = f.read()
         self.data, self.attrs = _load_h5(path)
 
-    @property
-    def config(self):
-        """The resolved config text (config plus overrides) the file was made from."""
-        return self.attrs.get("/", {}).get("config")
-
-    @property
-    def model(self):
-        """The model kind that produced the file (None where the file does not record one)."""
-        return self.attrs.get("/", {}).get("model")
-
     def group(self, prefix):
         """{name below prefix: array} for every dataset under `prefix` ("/features")."""
         prefix = prefix.rstrip("/") + "/"
@@ -140,8 +143,11 @@ class FileResult(Result):
         """Features of the file's /features group as Features (name -> value, .units)."""
         units = {k: (self.attrs.get("/features/" + k) or {}).get("units", "")
                  for k in self.group("/features")}
-        return Features([(k, float(np.asarray(v).reshape(-1)[0]), units[k])
-                         for k, v in self.group("/features").items()])
+        def scalar(v):
+            v = np.asarray(v).reshape(-1)
+            return float(v[0]) if v.dtype.kind in "fiu" else (v[0] if v.size == 1 else v.tolist())
+
+        return Features([(k, scalar(v), units[k]) for k, v in self.group("/features").items()])
 
     def __repr__(self):
         return "<phasmid.%s: %d datasets>" % (type(self).__name__, len(self.data))
@@ -163,8 +169,9 @@ class SimulationResult(Result):
     they are read-only views of the C++ result (``y`` is the whole times x states matrix).
     ``features`` is a Features dict, ``events`` a list of Event records."""
 
-    def __init__(self, sim=None, file=None):
+    def __init__(self, sim=None, file=None, attrs=None):
         self._sim, self._file = sim, file
+        self.attrs = attrs or {}
         if sim is not None and sim.has_solution:
             self.time = sim.time
             self.y = sim.y
@@ -187,6 +194,8 @@ class SimulationResult(Result):
             self._file = file
             self.notes, self.summary = sim.notes(), sim.summary()
         self._from_file(file)
+        if sim is not None:
+            self.features = Features(sim.feature_records())
 
     def _from_file(self, f):
         self.time = f.data.get("/trajectory/time")
@@ -238,8 +247,9 @@ class SensitivityResult(Result):
     axes = {"absolute": ("feature", "parameter"), "relative": ("feature", "parameter"),
             "trajectory": ("time", "state", "parameter"), "states": ("time", "state")}
 
-    def __init__(self, sens=None, file=None):
+    def __init__(self, sens=None, file=None, attrs=None):
         self._sens, self._file = sens, file
+        self.attrs = attrs or {}
         if sens is not None:
             self.parameters = sens.parameters
             self.parameter_units = sens.parameter_units
@@ -324,10 +334,15 @@ class SweepResult(FileResult):
         self.parameter_names = self.data["/sweep/parameter_names"]
         self.parameter_units = self.data.get("/sweep/parameter_units", [])
         self.points = self.data["/sweep/points"].reshape(-1, len(self.parameter_names))
-        self.features = self.group("/sweep/features")
+        self._features = self.group("/sweep/features")
         self.status = self.data.get("/sweep/status")
         self.gait_class = self.data.get("/sweep/gait_class")
         self.outcome = outcome or {}
+
+    @property
+    def features(self):
+        """{feature name: array over the points} (NaN where a point failed)."""
+        return self._features
 
     def __repr__(self):
         return "<phasmid.SweepResult: %d points x %d parameters, %d features>" % (

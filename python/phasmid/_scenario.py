@@ -64,7 +64,7 @@ class Scenario:
         max_step_ms, max_steps (solver steps per output interval). Raises SolverError when the integration fails."""
         if t_end_ms is not None:
             options["t_end_ms"] = t_end_ms
-        return SimulationResult(self._core.simulate({k: float(v) for k, v in options.items()}))
+        return SimulationResult(self._core.simulate({k: float(v) for k, v in options.items()}), attrs=self._attrs())
 
     def sensitivity(self, parameters=None, method=None, t_end_ms=None, output_dt_ms=None,
                     discard_ms=None, trajectory=None):
@@ -74,7 +74,10 @@ class Scenario:
         times x states x parameters sensitivities). Returns a SensitivityResult."""
         return SensitivityResult(_core.sensitivity(
             self._core, None if parameters is None else list(parameters), method, t_end_ms,
-            output_dt_ms, discard_ms, trajectory))
+            output_dt_ms, discard_ms, trajectory), attrs=self._attrs())
+
+    def _attrs(self):
+        return {"/": {"model": self.kind, "config": self.config_text}}
 
     def __repr__(self):
         return "<phasmid.Scenario %s (%s), %d parameters>" % (
