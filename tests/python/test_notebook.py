@@ -4,11 +4,16 @@ import os
 import nbformat
 from nbclient import NotebookClient
 
+import phasmid
 from conftest import SOURCE_DIR
 
 
-def test_tour_notebook_runs(tmp_path):
+def test_tour_notebook_runs(monkeypatch):
     path = os.path.join(SOURCE_DIR, "docs", "examples", "phasmid_tour.ipynb")
+    # The kernel imports the phasmid this test imports (it starts in docs/examples).
+    package_dir = os.path.dirname(os.path.dirname(os.path.abspath(phasmid.__file__)))
+    monkeypatch.setenv("PYTHONPATH", os.pathsep.join([package_dir, os.environ.get("PYTHONPATH", "")]))
+    monkeypatch.setenv("PYDEVD_DISABLE_FILE_VALIDATION", "1")
     nb = nbformat.read(path, as_version=4)
     NotebookClient(nb, timeout=300, kernel_name="python3",
                    resources={"metadata": {"path": os.path.dirname(path)}}).execute()
