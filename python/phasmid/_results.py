@@ -173,20 +173,7 @@ class SimulationResult(Result):
         self._sim, self._file = sim, file
         self.attrs = attrs or {}
         if sim is not None and sim.has_solution:
-            self.time = sim.time
-            self.y = sim.y
-            names = sim.state_names
-            self.states = {n: self.y[:, i] for i, n in enumerate(names)}
-            self.state_units = dict(zip(names, sim.state_units))
-            deg = {n: sim.degrees(n) for n in sim.degree_names()}
-            self.angles = _nested_angles({k[len("angles/"):]: v for k, v in deg.items() if k.startswith("angles/")})
-            self.angular_velocity = _nested_angles(
-                {k[len("angular_velocity/"):]: v for k, v in deg.items() if k.startswith("angular_velocity/")})
-            self.features = Features(sim.feature_records())
-            roots = sim.root_states()
-            self.events = [Event(t, names[roots[root]], d) for t, root, d in sim.event_records()]
-            self.notes, self.summary = sim.notes(), sim.summary()
-            return
+            return  # attributes are made on first access (__getattr__): a loop of runs pays for what it reads
         if sim is not None:  # a kind without an ODE trajectory: what its file holds
             with tempfile.TemporaryDirectory(prefix="phasmid-") as d:
                 sim.save(os.path.join(d, "run.h5"))
@@ -196,6 +183,15 @@ class SimulationResult(Result):
         self._from_file(file)
         if sim is not None:
             self.features = Features(sim.feature_records())
+
+    def __getattr__(self, name):
+        sim = self.__dict__.get("_sim")
+        make = _SIMULATION_ATTRIBUTES.get(name)
+        if make is None or sim is None or not sim.has_solution:
+            raise AttributeError(name)
+        value = make(self, sim)
+        setattr(self, name, value)
+        return value
 
     def _from_file(self, f):
         self.time = f.data.get("/trajectory/time")
@@ -224,6 +220,30 @@ class SimulationResult(Result):
 
     def __repr__(self):
         return "<phasmid.SimulationResult: %s>" % (self.summary or "%d times" % len(self.time))
+
+
+def _degrees(sim, prefix):
+    return _nested_angles({n[len(prefix):]: sim.degrees(n) for n in sim.degree_names() if n.startswith(prefix)})
+
+
+def _events(sim):
+    names, roots = sim.state_names, sim.root_states()
+    return [Event(t, names[roots[root]], d) for t, root, d in sim.event_records()]
+
+
+# How each attribute of a SimulationResult run here is made from the C++ Simulation.
+_SIMULATION_ATTRIBUTES = {
+    "time": lambda r, sim: sim.time,
+    "y": lambda r, sim: sim.y,
+    "states": lambda r, sim: {n: r.y[:, i] for i, n in enumerate(sim.state_names)},
+    "state_units": lambda r, sim: dict(zip(sim.state_names, sim.state_units)),
+    "angles": lambda r, sim: _degrees(sim, "angles/"),
+    "angular_velocity": lambda r, sim: _degrees(sim, "angular_velocity/"),
+    "features": lambda r, sim: Features(sim.feature_records()),
+    "events": lambda r, sim: _events(sim),
+    "notes": lambda r, sim: sim.notes(),
+    "summary": lambda r, sim: sim.summary(),
+}
 
 
 def _group_tree(flat):
