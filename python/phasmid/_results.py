@@ -101,9 +101,17 @@ class Result:
         """The model kind that produced the result (None where a file does not record one)."""
         return self.attrs.get("/", {}).get("model")
 
+    _made = None  # the C++ result of a run made here (it writes its own file)
+    _file = None  # the FileResult of a file read back
+
     def save(self, path):
-        """Write the result as a phasmid HDF5 file (docs/hdf5.md) at `path`; returns `path`."""
-        raise NotImplementedError
+        """Write the result as the phasmid HDF5 file (docs/hdf5.md) the CLI writes for the same
+        run, through the same C++ writer; returns `path`."""
+        if self._made is not None:
+            self._made.save(os.fspath(path))
+        else:
+            self._file.save(path)
+        return path
 
     def report(self, path):
         """Write the self-contained HTML report of this result to `path`; returns `path`."""
@@ -170,7 +178,7 @@ class SimulationResult(Result):
     ``features`` is a Features dict, ``events`` a list of Event records."""
 
     def __init__(self, sim=None, file=None, attrs=None):
-        self._sim, self._file = sim, file
+        self._made, self._file = sim, file
         self.attrs = attrs or {}
         if sim is not None and sim.has_solution:
             return  # attributes are made on first access (__getattr__): a loop of runs pays for what it reads
@@ -185,7 +193,7 @@ class SimulationResult(Result):
             self.features = Features(sim.feature_records())
 
     def __getattr__(self, name):
-        sim = self.__dict__.get("_sim")
+        sim = self.__dict__.get("_made")
         make = _SIMULATION_ATTRIBUTES.get(name)
         if make is None or sim is None or not sim.has_solution:
             raise AttributeError(name)
@@ -209,14 +217,6 @@ class SimulationResult(Result):
         """The angle "<leg>.<joint>" (deg)."""
         leg, joint = name.rsplit(".", 1)
         return self.angles[leg][joint]
-
-    def save(self, path):
-        """Write the run as `phasmid simulate` writes it (the same C++ writer); returns `path`."""
-        if self._sim is not None:
-            self._sim.save(os.fspath(path))
-        else:
-            self._file.save(path)
-        return path
 
     def __repr__(self):
         return "<phasmid.SimulationResult: %s>" % (self.summary or "%d times" % len(self.time))
@@ -268,7 +268,7 @@ class SensitivityResult(Result):
             "trajectory": ("time", "state", "parameter"), "states": ("time", "state")}
 
     def __init__(self, sens=None, file=None, attrs=None):
-        self._sens, self._file = sens, file
+        self._made, self._file = sens, file
         self.attrs = attrs or {}
         if sens is not None:
             self.parameters = sens.parameters
@@ -309,14 +309,6 @@ class SensitivityResult(Result):
         """dF/dp of `feature` by `parameter` (or p/F dF/dp with relative=True)."""
         a = self.relative if relative else self.absolute
         return float(a[self.feature_names.index(feature), self.parameters.index(parameter)])
-
-    def save(self, path):
-        """Write the file `phasmid sensitivity` writes for this run; returns `path`."""
-        if self._sens is not None:
-            self._sens.save(os.fspath(path))
-        else:
-            self._file.save(path)
-        return path
 
 
 class FitResult(FileResult):
