@@ -61,7 +61,8 @@ class Scenario:
         """Run the scenario as `phasmid simulate` does and return a SimulationResult.
 
         Options override [simulation]: t_end_ms, output_dt_ms, discard_ms, rtol, atol,
-        max_step_ms, max_steps (solver steps per output interval). Raises SolverError when the integration fails."""
+        max_step_ms, max_steps (solver steps per output interval). Raises SolverError when
+        the integration fails."""
         if t_end_ms is not None:
             options["t_end_ms"] = t_end_ms
         return SimulationResult(self._core.simulate({k: float(v) for k, v in options.items()}), attrs=self._attrs())
