@@ -289,8 +289,9 @@ class SensitivityResult(Result):
         self.parameters = d["/sensitivity/parameters"]
         self.parameter_units = d.get("/sensitivity/parameter_units", [])
         self.parameter_values = d.get("/sensitivity/parameter_values")
-        self.feature_names = list(f.group("/sensitivity/features"))
-        self.features = f.features
+        self.feature_names = d.get("/sensitivity/feature_names") or list(f.group("/sensitivity/features"))
+        self.features = Features(zip(self.feature_names, np.asarray(d["/sensitivity/feature_values"]).tolist(),
+                                     d["/sensitivity/feature_units"])) if "/sensitivity/feature_values" in d else f.features
         self.absolute = np.array([f.data["/sensitivity/features/" + n] for n in self.feature_names]).reshape(
             len(self.feature_names), len(self.parameters))
         self.relative = np.array([f.data["/sensitivity/relative/" + n] for n in self.feature_names]).reshape(
