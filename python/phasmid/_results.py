@@ -201,6 +201,9 @@ class SimulationResult(Result):
         setattr(self, name, value)
         return value
 
+    def __dir__(self):
+        return sorted(set(super().__dir__()) | set(_SIMULATION_ATTRIBUTES))
+
     def _from_file(self, f):
         self.time = f.data.get("/trajectory/time")
         self.states = f.group("/trajectory/states")
