@@ -2,8 +2,6 @@
 // Global sensitivity analysis (docs/gsa.md): the [gsa] design over the [[sweep.parameter]]
 // ranges runs as a sweep (threads, MPI ranks, journal and --resume as `phasmid sweep`), then
 // the analysis reads the finished sweep file and adds /gsa to it.
-#include <fmt/format.h>
-
 #include <filesystem>
 #include <iostream>
 
@@ -24,31 +22,6 @@ struct GsaArgs {
   long stop_after = -1;
 };
 
-std::string pm(double v, double conf) { return fmt::format("{:>8.4f} ± {:<7.4f}", v, conf); }
-
-// Per feature: the failed-point counts and the indices with their interval half-widths.
-void print_result(const gsa::GsaResult& r) {
-  const bool sobol = r.method == "sobol";
-  const double level = 100 * r.bootstrap.confidence;
-  for (const gsa::FeatureResult& f : r.features) {
-    const gsa::OutputCounts& c = sobol ? f.sobol.counts : f.morris.counts;
-    std::cout << fmt::format("{} ({}): {} of {} {} used ({} non-finite outputs, {} dropped)\n", f.name,
-                             f.unit.empty() ? "-" : f.unit, c.n_used, c.n_used + c.n_dropped,
-                             sobol ? "base rows" : "trajectories", c.n_nonfinite, c.n_dropped);
-    if (sobol && c.n_used >= 2 && !(f.sobol.variance > 0)) {
-      std::cout << "  no variance over the A and B rows (constant there): indices undefined (NaN)\n";
-      continue;
-    }
-    if (sobol) std::cout << fmt::format("  {:<28} {:>19} {:>19}   ({:g} % intervals)\n", "parameter", "S1", "ST", level);
-    else std::cout << fmt::format("  {:<28} {:>19} {:>10} {:>10}   ({:g} % intervals)\n", "parameter", "mu*", "mu", "sigma", level);
-    for (std::size_t j = 0; j < r.parameters.size(); ++j) {
-      const std::string& name = r.parameters[j].name;
-      if (sobol) std::cout << fmt::format("  {:<28} {} {}\n", name, pm(f.sobol.S1[j], f.sobol.S1_conf[j]), pm(f.sobol.ST[j], f.sobol.ST_conf[j]));
-      else std::cout << fmt::format("  {:<28} {} {:>10.4g} {:>10.4g}\n", name, pm(f.morris.mu_star[j], f.morris.mu_star_conf[j]), f.morris.mu[j], f.morris.sigma[j]);
-    }
-  }
-}
-
 // A finished sweep of this analysis is in OUT already (the run stopped before or during the
 // analysis step, or the analysis is repeated): --resume then only analyses.
 bool sweep_already_done(const GsaArgs& a) {
@@ -59,29 +32,26 @@ bool sweep_already_done(const GsaArgs& a) {
 
 int run(const GsaArgs& a) {
   const config::GsaInputs in = config::gsa_inputs(config::load_config(a.config), a.sets);
-  if (!sweep_already_done(a)) {
-    sweep::SweepOptions o;
-    o.output = a.out, o.resume = a.resume, o.threads = a.threads, o.stop_after = a.stop_after;
-    o.progress = !a.quiet, o.handle_signals = true, o.command = command_line();
-    const sweep::SweepOutcome s = sweep::run_sweep(in.sweep, o);
-    if (s.worker) return 0;  // MPI worker rank: rank 0 analyses
-    if (!s.complete) {
-      std::cerr << "phasmid gsa: " << (s.signal ? "interrupted" : "stopped") << " with " << (s.n_recovered + s.n_computed)
-                << " of " << s.n_points << " design points done (kept in " << s.journal << "); continue with: "
-                << (s.distributed ? "mpirun ... " : "") << "phasmid gsa " << a.config << " -o " << a.out << " --resume\n";
-      return s.signal ? 128 + s.signal : 3;
-    }
-    if (!a.quiet)
-      std::cerr << "phasmid gsa: " << s.n_points << " design points (" << s.n_failed << " failed, " << s.n_recovered
-                << " resumed) on " << s.executor << " in " << s.wall_seconds << " s\n";
-  } else if (dist::rank() != 0) {
-    return 0;
+  const bool sweep_done = sweep_already_done(a);
+  if (sweep_done && dist::rank() != 0) return 0;  // MPI worker rank: rank 0 analyses
+  sweep::SweepOptions o;
+  o.output = a.out, o.resume = a.resume, o.threads = a.threads, o.stop_after = a.stop_after;
+  o.progress = !a.quiet, o.handle_signals = true, o.command = command_line();
+  const config::GsaOutcome r = config::run_gsa(in, o, sweep_done);
+  const sweep::SweepOutcome& s = r.sweep;
+  if (!sweep_done && s.worker) return 0;
+  if (!r.analysed) {
+    std::cerr << "phasmid gsa: " << (s.signal ? "interrupted" : "stopped") << " with " << (s.n_recovered + s.n_computed)
+              << " of " << s.n_points << " design points done (kept in " << s.journal << "); continue with: "
+              << (s.distributed ? "mpirun ... " : "") << "phasmid gsa " << a.config << " -o " << a.out << " --resume\n";
+    return s.signal ? 128 + s.signal : 3;
   }
-  const gsa::GsaResult result = config::analyse_and_write(in, a.out, command_line());
-  if (!a.quiet) {
-    print_result(result);
-    std::cerr << "phasmid gsa: " << result.method << " analysis of " << result.features.size() << " features -> " << a.out << "\n";
-  }
+  if (a.quiet) return 0;
+  if (!sweep_done)
+    std::cerr << "phasmid gsa: " << s.n_points << " design points (" << s.n_failed << " failed, " << s.n_recovered
+              << " resumed) on " << s.executor << " in " << s.wall_seconds << " s\n";
+  std::cout << config::gsa_summary(r.result);
+  std::cerr << "phasmid gsa: " << r.result.method << " analysis of " << r.result.features.size() << " features -> " << a.out << "\n";
   return 0;
 }
 

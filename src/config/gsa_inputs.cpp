@@ -1,5 +1,7 @@
 #include "config/gsa_inputs.hpp"
 
+#include <fmt/format.h>
+
 #include "config/gsa_section.hpp"
 #include "config/sweep_inputs.hpp"
 #include "config/sweep_section.hpp"
@@ -27,6 +29,46 @@ gsa::GsaResult analyse_and_write(const GsaInputs& in, const std::string& path, c
       if (f.unit.empty() && info.name == f.name) f.unit = info.unit;
   gsa::write_gsa_file(path, path, result, {in.sweep.resolved_config, command});
   return result;
+}
+
+GsaOutcome run_gsa(const GsaInputs& in, const sweep::SweepOptions& o, bool sweep_done) {
+  GsaOutcome out;
+  if (!sweep_done) {
+    out.sweep = sweep::run_sweep(in.sweep, o);
+    if (out.sweep.worker || !out.sweep.complete) return out;
+  }
+  out.result = analyse_and_write(in, o.output, o.command);
+  out.analysed = true;
+  return out;
+}
+
+namespace {
+std::string pm(double v, double conf) { return fmt::format("{:>8.4f} ± {:<7.4f}", v, conf); }
+
+std::string feature_table(const gsa::GsaResult& r, const gsa::FeatureResult& f) {
+  const bool sobol = r.method == "sobol";
+  const double level = 100 * r.bootstrap.confidence;
+  const gsa::OutputCounts& c = sobol ? f.sobol.counts : f.morris.counts;
+  std::string s = fmt::format("{} ({}): {} of {} {} used ({} non-finite outputs, {} dropped)\n", f.name,
+                              f.unit.empty() ? "-" : f.unit, c.n_used, c.n_used + c.n_dropped,
+                              sobol ? "base rows" : "trajectories", c.n_nonfinite, c.n_dropped);
+  if (sobol && c.n_used >= 2 && !(f.sobol.variance > 0))
+    return s + "  no variance over the A and B rows (constant there): indices undefined (NaN)\n";
+  if (sobol) s += fmt::format("  {:<28} {:>19} {:>19}   ({:g} % intervals)\n", "parameter", "S1", "ST", level);
+  else s += fmt::format("  {:<28} {:>19} {:>10} {:>10}   ({:g} % intervals)\n", "parameter", "mu*", "mu", "sigma", level);
+  for (std::size_t j = 0; j < r.parameters.size(); ++j) {
+    const std::string& name = r.parameters[j].name;
+    if (sobol) s += fmt::format("  {:<28} {} {}\n", name, pm(f.sobol.S1[j], f.sobol.S1_conf[j]), pm(f.sobol.ST[j], f.sobol.ST_conf[j]));
+    else s += fmt::format("  {:<28} {} {:>10.4g} {:>10.4g}\n", name, pm(f.morris.mu_star[j], f.morris.mu_star_conf[j]), f.morris.mu[j], f.morris.sigma[j]);
+  }
+  return s;
+}
+}  // namespace
+
+std::string gsa_summary(const gsa::GsaResult& r) {
+  std::string s;
+  for (const gsa::FeatureResult& f : r.features) s += feature_table(r, f);
+  return s;
 }
 
 }  // namespace phasmid::config

@@ -25,4 +25,19 @@ GsaInputs gsa_inputs(const Config& cfg, const std::vector<std::string>& sets);
 // [gsa] and writes /gsa into the same file (atomically). Returns the result.
 gsa::GsaResult analyse_and_write(const GsaInputs& in, const std::string& path, const std::string& command);
 
+// One `phasmid gsa` run, the verb's and phasmid.gsa()'s: unless `sweep_done` (the finished sweep
+// of this design is in o.output already), runs the design's sweep with `o`; when that sweep
+// completed on rank 0 (not a worker, not stopped), analyses it and writes /gsa into o.output
+// (command o.command).
+struct GsaOutcome {
+  sweep::SweepOutcome sweep;  // default-constructed when sweep_done
+  bool analysed = false;      // false: an MPI worker rank, or the sweep stopped (journal kept)
+  gsa::GsaResult result;      // when analysed
+};
+GsaOutcome run_gsa(const GsaInputs& in, const sweep::SweepOptions& o, bool sweep_done);
+
+// The table `phasmid gsa` prints: per feature the used and dropped counts and each parameter's
+// indices with their interval half-widths.
+std::string gsa_summary(const gsa::GsaResult& r);
+
 }  // namespace phasmid::config
