@@ -1,5 +1,6 @@
-"""phasmid from Python: scenarios, simulations, sensitivities, fits and sweeps of the
-stick-insect walking model, on the same C++ core as the ``phasmid`` command (docs/python.md).
+"""phasmid from Python: scenarios, simulations, sensitivities, fits, sweeps and global
+sensitivity analyses of the stick-insect walking model, on the same C++ core as the
+``phasmid`` command (docs/python.md).
 
     import phasmid
     run = phasmid.load("configs/single_joint_fti.toml").simulate(t_end_ms=2000)
@@ -12,14 +13,14 @@ are NumPy views of the C++ result's memory (read-only, no copy).
 from ._core import Error, ConfigError, SolverError, __version__
 from ._results import (Parameter, Parameters, Feature, Features, Event, Result,
                        SimulationResult, SensitivityResult, FitResult, SweepResult,
-                       GsaResult, FileResult, read)
+                       GsaResult, GsaFeature, FileResult, read)
 from ._scenario import Scenario, load, loads, fit, sweep, gsa
 
 __all__ = [
     "Error", "ConfigError", "SolverError", "__version__",
     "Scenario", "load", "loads", "fit", "sweep", "gsa", "read",
     "Parameter", "Parameters", "Feature", "Features", "Event",
-    "Result", "SimulationResult", "SensitivityResult", "FitResult", "SweepResult", "GsaResult",
+    "Result", "SimulationResult", "SensitivityResult", "FitResult", "SweepResult", "GsaResult", "GsaFeature",
     "FileResult",
 ]
 

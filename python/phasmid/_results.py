@@ -365,13 +365,75 @@ class SweepResult(FileResult):
             self.points.shape[0], self.points.shape[1], len(self.features))
 
 
+class GsaFeature:
+    """The analysis of one feature in a GsaResult (/gsa/<feature>, docs/gsa.md): ``name``,
+    ``unit``, ``Y`` (the feature at every design row, NaN where undefined or failed), the counts
+    ``n_nonfinite``, ``n_dropped`` and ``n_used`` (base rows or trajectories), and the indices
+    over the parameters: Sobol' ``S1``, ``S1_conf``, ``ST``, ``ST_conf`` and, with second_order,
+    ``S2``, ``S2_conf`` (D x D, upper triangle), ``variance``; Morris ``mu``, ``mu_star``,
+    ``mu_star_conf``, ``sigma`` (None where the method has no such index). ``convergence``
+    maps "n" and the index names to the nested-subset arrays (rows: subset sizes)."""
+
+    INDICES = ("S1", "S1_conf", "ST", "ST_conf", "S2", "S2_conf", "mu", "mu_star", "mu_star_conf", "sigma")
+
+    def __init__(self, result, name):
+        g = "/gsa/" + name
+        attrs = result.attrs.get(g, {})
+        self.name = name
+        self.unit = attrs.get("units", "")
+        self.Y = result.data[g + "/Y"]
+        for k in self.INDICES:
+            setattr(self, k, result.data.get(g + "/" + k))
+        self.n_nonfinite, self.n_dropped, self.n_used = (int(attrs[k]) for k in ("n_nonfinite", "n_dropped", "n_used"))
+        self.variance = float(attrs["variance"]) if "variance" in attrs else None
+        self.convergence = result.group(g + "/convergence")
+
+    def __repr__(self):
+        return "<phasmid.GsaFeature %s: %d used, %d dropped>" % (self.name, self.n_used, self.n_dropped)
+
+
 class GsaResult(FileResult):
-    """A global sensitivity analysis file (/gsa, docs/gsa.md) read back: everything in ``data``."""
+    """A global sensitivity analysis (phasmid.gsa, or a /gsa file read back; docs/gsa.md):
+    ``method`` ("sobol" | "morris"), ``N`` (Sobol' base rows) or ``r`` (Morris trajectories),
+    ``estimators`` {index: estimator name}; the design: ``parameter_names``,
+    ``parameter_units``, ``lower``, ``upper``, ``scale``, ``design`` (rows x D, in parameter
+    units) and ``unit_design`` (rows x D, unit cube); ``features`` {name: GsaFeature} with the
+    outputs, the indices and the dropped-point counts; ``summary`` the table `phasmid gsa`
+    prints (for a run made here). Everything of the file is in ``data`` and ``attrs``."""
+
+    def __init__(self, path, outcome=None):
+        super().__init__(path)
+        a = self.attrs.get("/gsa", {})
+        self.method = a.get("method")
+        self.N = int(a["N"]) if "N" in a else None
+        self.r = int(a["r"]) if "r" in a else None
+        self.estimators = {k[len("estimator_"):]: v for k, v in a.items() if k.startswith("estimator_")}
+        d = self.data
+        self.parameter_names = d["/gsa/design/parameter_names"]
+        self.parameter_units = d["/gsa/design/parameter_units"]
+        self.scale = d["/gsa/design/scale"]
+        self.lower, self.upper = d["/gsa/design/lower"], d["/gsa/design/upper"]
+        dim = len(self.parameter_names)
+        self.design = d["/gsa/design/values"].reshape(-1, dim)
+        self.unit_design = d["/gsa/design/unit"].reshape(-1, dim)
+        names = sorted({k.split("/")[2] for k in d if k.startswith("/gsa/") and k.split("/")[2] != "design"})
+        self._features = {n: GsaFeature(self, n) for n in names}
+        self.outcome = outcome or {}
+        self.summary = self.outcome.get("summary", "")
+
+    @property
+    def features(self):
+        """{feature name: GsaFeature}."""
+        return self._features
+
+    def __repr__(self):
+        return "<phasmid.GsaResult: %s over %d parameters, %d design rows, %d features>" % (
+            self.method, len(self.parameter_names), self.design.shape[0], len(self.features))
 
 
 def read(path):
     """Load any phasmid HDF5 file into the result object of the verb that wrote it:
-    SensitivityResult (/sensitivity), FitResult (/fit), SweepResult (/sweep), GsaResult (/gsa),
+    SensitivityResult (/sensitivity), FitResult (/fit), GsaResult (/gsa), SweepResult (/sweep),
     SimulationResult (/trajectory), else a FileResult."""
     f = FileResult(path)
     keys = f.data.keys()
@@ -379,10 +441,10 @@ def read(path):
         return SensitivityResult(file=f)
     if "/fit/parameter_names" in keys:
         return FitResult(path)
+    if "/gsa/design/parameter_names" in keys:  # a gsa file holds its sweep too
+        return GsaResult(path)
     if "/sweep/parameter_names" in keys:
         return SweepResult(path)
-    if any(k.startswith("/gsa/") for k in keys):
-        return GsaResult(path)
     if "/trajectory/time" in keys:
         return SimulationResult(file=f)
     return f

@@ -4,7 +4,7 @@ import tempfile
 
 from . import _core
 from ._results import (Parameter, Parameters, SimulationResult, SensitivityResult, FitResult,
-                       SweepResult)
+                       SweepResult, GsaResult)
 
 
 def _sets(values):
@@ -126,8 +126,15 @@ def sweep(config, set=None, threads=0):
         return SweepResult(out, outcome)
 
 
-def gsa(config, **options):
-    """Global sensitivity analysis: not available yet. The `phasmid gsa` verb has not reached
-    this build (docs/gsa.md); phasmid.read() already loads /gsa files into a GsaResult."""
-    raise NotImplementedError("phasmid.gsa: the gsa verb is not in this build yet (docs/gsa.md); "
-                              "phasmid.read() loads /gsa files")
+def gsa(config, set=None, threads=0):
+    """Run the global sensitivity analysis of a config's [gsa] section over its
+    [[sweep.parameter]] ranges as `phasmid gsa` does (the same C++ function: the design's
+    sweep, then the analysis of its file; threads: 0 for OpenMP's default) and return a
+    GsaResult carrying what the HDF5 file holds. `config` is a path or a Scenario; `set` gives
+    parameter overrides like --set. Ctrl-C finishes the running points and raises
+    KeyboardInterrupt."""
+    core = _scenario_of(config, set)
+    with tempfile.TemporaryDirectory(prefix="phasmid-") as d:
+        out = os.path.join(d, "gsa.h5")
+        outcome = _core.gsa(core, int(threads), out)
+        return GsaResult(out, outcome)

@@ -1,10 +1,11 @@
-// phasmid._core.fit and phasmid._core.sweep: the analyses of `phasmid fit` and `phasmid sweep`
-// on a scenario's config, writing the same HDF5 file through the same writers; the Python
+// phasmid._core.fit, .sweep and .gsa: the analyses of `phasmid fit`, `phasmid sweep` and
+// `phasmid gsa` on a scenario's config, writing the same HDF5 file through the same writers; the Python
 // layer reads that file into its result objects (docs/python.md).
 #include <map>
 
 #include "app/write_output.hpp"
 #include "bindings.hpp"
+#include "config/gsa_inputs.hpp"
 #include "config/sweep_inputs.hpp"
 #include "fit/fit_problem.hpp"
 #include "fit/fit_run.hpp"
@@ -67,10 +68,14 @@ py::dict run_fit(const std::shared_ptr<PyScenario>& s, const std::map<std::strin
   return d;
 }
 
-// Runs every point of the config's [sweep] and writes `out`; Ctrl-C finishes the running
-// points and raises KeyboardInterrupt (the journal `out`.journal keeps the finished ones).
-py::dict run_sweep(const std::shared_ptr<PyScenario>& s, int threads, bool resume, const std::string& out) {
-  sweep::SweepInputs inputs = config_stage([&] { return config::sweep_inputs(s->cfg, s->sets); });
+// KeyboardInterrupt "<what> interrupted with K of N points done<tail>".
+[[noreturn]] void raise_interrupted(const std::string& what, const sweep::SweepOutcome& r, const std::string& tail) {
+  PyErr_SetString(PyExc_KeyboardInterrupt, (what + " interrupted with " + std::to_string(r.n_recovered + r.n_computed) +
+                                            " of " + std::to_string(r.n_points) + " points done" + tail).c_str());
+  throw py::error_already_set();
+}
+
+sweep::SweepOptions sweep_options(int threads, bool resume, const std::string& out) {
   sweep::SweepOptions o;
   o.output = out;
   o.threads = threads;
@@ -78,17 +83,10 @@ py::dict run_sweep(const std::shared_ptr<PyScenario>& s, int threads, bool resum
   o.progress = false;
   o.handle_signals = true;
   o.command = command_text();
-  sweep::SweepOutcome r;
-  {
-    py::gil_scoped_release release;
-    r = sweep::run_sweep(std::move(inputs), o);
-  }
-  if (r.signal) {
-    PyErr_SetString(PyExc_KeyboardInterrupt, ("sweep interrupted with " + std::to_string(r.n_recovered + r.n_computed) +
-                                              " of " + std::to_string(r.n_points) + " points done (kept in " + r.journal +
-                                              "; resume=True continues)").c_str());
-    throw py::error_already_set();
-  }
+  return o;
+}
+
+py::dict sweep_outcome(const sweep::SweepOutcome& r) {
   py::dict d;
   d["n_points"] = r.n_points;
   d["n_failed"] = r.n_failed;
@@ -98,11 +96,40 @@ py::dict run_sweep(const std::shared_ptr<PyScenario>& s, int threads, bool resum
   return d;
 }
 
+// Runs every point of the config's [sweep] and writes `out`; Ctrl-C finishes the running
+// points and raises KeyboardInterrupt (the journal `out`.journal keeps the finished ones).
+py::dict run_sweep(const std::shared_ptr<PyScenario>& s, int threads, bool resume, const std::string& out) {
+  sweep::SweepInputs inputs = config_stage([&] { return config::sweep_inputs(s->cfg, s->sets); });
+  sweep::SweepOutcome r;
+  {
+    py::gil_scoped_release release;
+    r = sweep::run_sweep(std::move(inputs), sweep_options(threads, resume, out));
+  }
+  if (r.signal) raise_interrupted("sweep", r, " (kept in " + r.journal + "; resume=True continues)");
+  return sweep_outcome(r);
+}
+
+// Runs the config's [gsa] analysis as `phasmid gsa` does (config::run_gsa) into `out`; returns
+// the sweep's counts and the table the verb prints.
+py::dict run_gsa(const std::shared_ptr<PyScenario>& s, int threads, const std::string& out) {
+  const config::GsaInputs in = config_stage([&] { return config::gsa_inputs(s->cfg, s->sets); });
+  config::GsaOutcome r;
+  {
+    py::gil_scoped_release release;
+    r = config::run_gsa(in, sweep_options(threads, false, out), false);
+  }
+  if (!r.analysed) raise_interrupted("gsa", r.sweep, "");  // the journal was in a temporary directory
+  py::dict d = sweep_outcome(r.sweep);
+  d["summary"] = config::gsa_summary(r.result);
+  return d;
+}
+
 }  // namespace
 
 void bind_analyses(py::module_& m) {
   m.def("fit", &run_fit, py::arg("scenario"), py::arg("options"), py::arg("profile"), py::arg("out"));
   m.def("sweep", &run_sweep, py::arg("scenario"), py::arg("threads"), py::arg("resume"), py::arg("out"));
+  m.def("gsa", &run_gsa, py::arg("scenario"), py::arg("threads"), py::arg("out"));
 }
 
 }  // namespace phasmid::python

@@ -96,7 +96,3 @@ def test_simulation_report(tmp_path):
     html = (tmp_path / "r.html").read_text()
     assert "<html" in html.lower() and "middle" in html
 
-
-def test_gsa_says_it_is_not_there():
-    with pytest.raises(NotImplementedError, match="gsa"):
-        phasmid.gsa(config("single_joint_fti.toml"))
