@@ -22,3 +22,4 @@ def test_tour_notebook_runs(monkeypatch):
     assert sum(1 for o in outputs if "image/png" in o.get("data", {})) == 3  # angle, fit, sweep
     text = "".join(o.get("text", "") for o in outputs)
     assert "converged: True" in text and "period_ms" in text
+    assert "x2   S1 0.4424" in text  # the analytic S1 of the Ishigami function to four digits
