@@ -1,6 +1,13 @@
 """phasmid.gsa() against `phasmid gsa` on the Ishigami config (docs/gsa.md, docs/python.md):
 the same file bit for bit, read() of the CLI's file gives the same object, the analytic Sobol'
-indices inside the estimates' intervals, Morris screening, and the CLI's error messages."""
+indices inside the estimates' intervals, Morris screening, the CLI's error messages and Ctrl-C."""
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+
 import h5py
 import numpy as np
 import pytest
@@ -152,3 +159,26 @@ def test_gsa_errors_have_cli_message(tmp_path, replace):
         phasmid.gsa(path)
     assert str(e.value) == cli_error("gsa", path, "-q", "-o", str(tmp_path / "x.h5"))
     assert "gsa.toml:" in str(e.value) and "[gsa" in str(e.value)
+
+
+INTERRUPTED = r"""
+import sys, phasmid
+print("started", flush=True)
+try:
+    phasmid.gsa(sys.argv[1], threads=1)
+except KeyboardInterrupt as e:
+    print("interrupted: %s" % e, flush=True)
+"""
+
+
+def test_ctrl_c_interrupts_a_gsa():
+    # 32 (D + 2) = 192 runs of 3000 ms: several seconds on one thread.
+    p = subprocess.Popen([sys.executable, "-c", INTERRUPTED, config("gsa_single_joint.toml")],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=os.environ)
+    assert p.stdout.readline().strip() == "started"
+    time.sleep(1.5)
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=60)
+    assert p.returncode == 0, err
+    m = re.search(r"interrupted: gsa interrupted with (\d+) of 192 points done", out)
+    assert m and int(m.group(1)) < 192, out + err
