@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "common/error.hpp"
+#include "io/output_path.hpp"
 #include "build_info.hpp"
 
 namespace phasmid::io {
@@ -41,8 +42,11 @@ std::string now_iso8601() {
 }  // namespace
 
 H5Writer::H5Writer(const std::string& path) : path_(path), tmp_path_(path + ".tmp") {
+  check_output_path(path);
   auto dir = std::filesystem::path(path).parent_path();
-  if (!dir.empty()) std::filesystem::create_directories(dir);
+  std::error_code ec;
+  if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+  if (ec) throw Error("cannot create directory " + dir.string() + " for " + path + ": " + ec.message());
   file_ = H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   if (file_ < 0) throw Error("cannot create HDF5 file " + tmp_path_);
 }
