@@ -40,6 +40,10 @@ int main(int argc, char** argv) {
   CLI::App app{"phasmid: simulation, sensitivities, fits and sweeps of the stick-insect walking model"};
   app.set_version_flag("--version", std::string(PHASMID_VERSION) + " (" + phasmid::dist::mpi_description() + ")");
   app.require_subcommand(1);
+  // Usage errors in one line, like every other error (docs/cli.md).
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return std::string("phasmid: error: ") + e.what() + " (see phasmid --help)\n";
+  });
   std::function<int()> action;
   for (auto& verb : verbs()) {
     CLI::App* sub = app.add_subcommand(verb.name, verb.description);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 
 #include "common/error.hpp"
@@ -85,6 +86,7 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
       offset_ids.insert(k.time_offset_parameter);
     }
   std::set<std::string> seen;
+  std::map<size_t, std::string> claimed;  // model parameter -> the id that names it
   for (auto& fp : params_) {
     const std::string w = fp.origin.empty() ? "" : fp.origin + ": ";
     if (!seen.insert(fp.id).second) throw Error(w + "parameter '" + fp.id + "' given twice");
@@ -96,6 +98,10 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
     std::vector<size_t> ks = match_parameters(ps, fp.id, w);
     for (size_t k : ks) {
       const model::Parameter& mp = ps.at(k);
+      // Two ids naming one model parameter would estimate it twice (or fix and estimate it).
+      auto [it, fresh] = claimed.emplace(k, fp.id);
+      if (!fresh)
+        throw Error(w + "parameter '" + fp.id + "' names " + mp.name + ", which '" + it->second + "' names already");
       if (fp.estimate) {
         if (fp.lower < mp.lower || fp.upper > mp.upper)
           throw Error(w + "bounds [" + fmt(fp.lower) + ", " + fmt(fp.upper) + "] of '" + mp.name +

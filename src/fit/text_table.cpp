@@ -87,6 +87,7 @@ double cell_number(const TextRow& row, size_t col, const std::string& column_nam
   double v = std::strtod(b, &end);
   if (end == b || *end != '\0') throw Error(where + ": '" + s + "' in column '" + column_name + "' is not a number");
   if (std::isnan(v) && !allow_missing) throw Error(where + ": missing value in column '" + column_name + "'");
+  if (std::isinf(v)) throw Error(where + ": '" + s + "' in column '" + column_name + "' is not a finite number");
   return v;
 }
 
