@@ -8,6 +8,7 @@
 
 #include "common/embedded.hpp"
 #include "common/error.hpp"
+#include "io/text_file.hpp"
 
 namespace phasmid::config {
 namespace fs = std::filesystem;
@@ -154,11 +155,7 @@ Config parse_config(const std::string& text, const std::string& origin) {
 
 Config load_config(const std::string& path) {
   if (fs::exists(path)) {
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot read config");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return parse_config(ss.str(), path);
+    return parse_config(io::read_text_file(path, "config"), path);
   }
   const auto& files = embedded::files();
   for (const std::string& key : {path, "configs/" + path, "configs/" + path + ".toml"}) {

@@ -6,17 +6,12 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "io/text_file.hpp"
 #include "fit/text_table.hpp"
 
 namespace phasmid::fit {
 namespace {
-std::string slurp(const std::string& path, const char* what) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot read " + what);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string slurp(const std::string& path, const char* what) { return io::read_text_file(path, what); }
 
 void check_times(const KinematicData& d, const std::vector<size_t>& lines, const std::string& origin) {
   for (size_t k = 0; k < d.time_ms.size(); ++k) {

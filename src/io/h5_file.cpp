@@ -1,5 +1,6 @@
 #include "io/h5_file.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -200,6 +201,7 @@ void H5Writer::commit() {
 
 H5Reader::H5Reader(const std::string& path) : path_(path) {
   if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
+  if (!std::filesystem::is_regular_file(path)) throw Error(path + ": not a regular file");  // a fifo would block
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file_ < 0) throw Error(path + ": not an HDF5 file");
 }
@@ -237,10 +239,27 @@ std::vector<hsize_t> H5Reader::dims(const std::string& path) const {
   return d;
 }
 
+// A dataset may declare any extent in a few bytes (unallocated or compressed storage): refuse
+// one whose values could not have come from a file of this size before allocating for them.
+void H5Reader::check_extent(hid_t ds, hid_t space, const std::string& path) const {
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  hsize_t file_bytes = 0;
+  H5Fget_filesize(file_, &file_bytes);
+  const double bytes = static_cast<double>(n) * 8.0;
+  const double limit = std::max(kMinReadLimitBytes, kMaxExpansion * static_cast<double>(file_bytes));
+  if (n < 0 || bytes > limit) {
+    H5Sclose(space);
+    H5Dclose(ds);
+    throw Error(path_ + ": dataset " + path + " declares " + std::to_string(n) + " values, more than a " +
+                std::to_string(file_bytes) + "-byte file holds");
+  }
+}
+
 std::vector<double> H5Reader::read_doubles(const std::string& path) const {
   hid_t ds = H5Dopen2(file_, path.c_str(), H5P_DEFAULT);
   if (ds < 0) throw Error(path_ + ": no dataset " + path);
   hid_t space = H5Dget_space(ds);
+  check_extent(ds, space, path);
   hssize_t n = H5Sget_simple_extent_npoints(space);
   std::vector<double> out(static_cast<size_t>(n));
   herr_t st = n ? H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) : 0;
@@ -254,6 +273,7 @@ std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
   hid_t ds = H5Dopen2(file_, path.c_str(), H5P_DEFAULT);
   if (ds < 0) throw Error(path_ + ": no dataset " + path);
   hid_t space = H5Dget_space(ds);
+  check_extent(ds, space, path);
   hssize_t n = H5Sget_simple_extent_npoints(space);
   hid_t type = H5Tcopy(H5T_C_S1);
   H5Tset_size(type, H5T_VARIABLE);
