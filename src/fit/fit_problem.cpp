@@ -7,6 +7,7 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
+#include "features/joint_range.hpp"
 #include "io/h5_file.hpp"
 #include "io/trajectory_writer.hpp"
 
@@ -255,6 +256,7 @@ FitProblem::Run FitProblem::run(const double* x, bool with_sens) const {
   std::vector<solver::RootSpec> roots;
   if (!targets_.features.empty()) roots = features::feature_roots(model_, R.p);
   R.res = sim.run(R.p, times, roots, with_sens ? sens_params_ : std::vector<size_t>{});
+  features::check_joint_ranges(model_, R.res);  // a run beyond them is a failed evaluation
   if (R.res.t.size() != times.size()) throw SolverError("internal: simulation returned too few outputs");
   return R;
 }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "config/fit_section.hpp"
+#include "features/joint_range.hpp"
 #include "fit/fit_problem.hpp"
 #include "io/trajectory_writer.hpp"
 
@@ -71,6 +72,7 @@ std::unique_ptr<ScenarioRun> OdeScenario::run(const std::vector<double>& p, cons
   solver::Simulator sim(*model_, s.solver);
   solver::SolveResult r =
       sim.run(p, solver::output_grid(s.t_end_ms, s.output_dt_ms), features::feature_roots(*model_, p));
+  features::check_joint_ranges(*model_, r);
   return std::make_unique<OdeRun>(*model_, p, std::move(r), s);
 }
 
@@ -80,6 +82,7 @@ std::vector<features::Feature> OdeScenario::evaluate_features(const std::vector<
   // Features come from located events, so two output times suffice; CVODES steps the same
   // way whatever the output grid (it interpolates to output times in CV_NORMAL mode).
   solver::SolveResult r = sim.run(p, {0.0, s.t_end_ms}, features::feature_roots(*model_, p));
+  features::check_joint_ranges(*model_, r);
   features::FeatureOptions fo;
   fo.discard_ms = s.discard_ms;
   return features::compute_features(*model_, r, fo);
