@@ -91,6 +91,8 @@ KinematicData parse_anipose_csv(const std::string& text, const std::string& orig
   std::vector<size_t> lines;
   for (const auto& row : t.rows) {
     double f = cell_number(row, fcol, "fnum", origin);
+    if (f < 0 || f != std::floor(f))
+      throw Error(origin + ":" + std::to_string(row.line) + ": fnum " + row.cells[fcol] + " is not a frame number (an integer >= 0)");
     d.time_ms.push_back((f - o.fnum_offset) / o.frame_rate_hz * 1000.0);
     lines.push_back(row.line);
     for (size_t a = 0; a < acols.size(); ++a)
