@@ -13,8 +13,14 @@
 namespace phasmid::io {
 namespace {
 
+// HDF5 closes what is still open when the process exits; a file whose close failed (a full
+// disk) is still open and that second close crashes inside HDF5, after our error message. Files
+// are closed by H5Writer and H5Reader themselves, so the exit-time close is not needed.
 struct SilenceHdf5 {
-  SilenceHdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+  SilenceHdf5() {
+    H5dont_atexit();  // before any other HDF5 call
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
 };
 const SilenceHdf5 silence_hdf5_once;  // we report errors ourselves, in one line
 
