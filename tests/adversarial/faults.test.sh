@@ -36,7 +36,7 @@ cp "$FTI" "$tmp/sweep.toml"
 sed -i 's/^t_end_ms = .*/t_end_ms = 3000/; s/^discard_ms = .*/discard_ms = 1000/' "$tmp/sweep.toml"
 printf '[sweep]\ndesign = "grid"\n[[sweep.parameter]]\nname = "middle.fti.b_v"\nvalues = [10.0, 11.0, 12.0, 13.0, 14.0, 15.0]\n' >>"$tmp/sweep.toml"
 "$PHASMID" sweep "$tmp/sweep.toml" -o "$tmp/whole.h5" -q -j 1 || bad "uninterrupted sweep failed"
-features() { h5dump -d /sweep/features "$1" 2>/dev/null | grep -v HDF5; h5dump -d /sweep/status "$1" 2>/dev/null | grep -v HDF5; }
+features() { h5dump -g /sweep "$1" 2>/dev/null | grep -v "^HDF5"; }  # features, status and points of every point
 for sig in KILL INT; do
   out="$tmp/$sig.h5"
   "$PHASMID" sweep "$tmp/sweep.toml" -o "$out" -q -j 1 & pid=$!
