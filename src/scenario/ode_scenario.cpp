@@ -4,6 +4,7 @@
 
 #include "config/fit_section.hpp"
 #include "features/joint_range.hpp"
+#include "features/missing_features.hpp"
 #include "fit/fit_problem.hpp"
 #include "io/trajectory_writer.hpp"
 
@@ -25,6 +26,7 @@ class OdeRun : public ScenarioRun {
     features::FeatureOptions fo;
     fo.discard_ms = s.discard_ms;
     features_ = features::compute_features(model_, result_, fo);
+    missing_ = features::add_missing_features(features_, features::feature_catalogue(model_));
     // Command times resolved by [[triggers]] are recorded with the values they took.
     for (const auto& c : result_.commands) p_[c.parameter] = c.t_ms;
   }
@@ -33,6 +35,7 @@ class OdeRun : public ScenarioRun {
     io::write_trajectory(out, model_, result_);
     io::write_parameters(out, model_, p_);
     features::write_features_h5(out, features_);
+    features::mark_missing_features_h5(out, missing_);
   }
   // One line per triggered command time (its value reproduces the run with fixed times, e.g.
   // for `phasmid sensitivity`), and one per trigger that never fired.
@@ -50,6 +53,7 @@ class OdeRun : public ScenarioRun {
         lines.push_back("warning: trigger " + trigger_text(triggers[k]) + " for " +
                         model_.parameters().at(triggers[k].targets.front()).name +
                         " did not fire before the end of the run");
+    if (!missing_.empty()) lines.push_back("warning: " + features::missing_features_note(missing_));
     return lines;
   }
   std::string summary() const override {
@@ -64,6 +68,7 @@ class OdeRun : public ScenarioRun {
   solver::SolveResult result_;
   double t_end_ms_;
   std::vector<features::Feature> features_;
+  std::vector<std::string> missing_;  // catalogue features the run could not compute (NaN)
 };
 
 }  // namespace
