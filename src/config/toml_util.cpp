@@ -35,6 +35,7 @@ double number(const Config& cfg, const toml::node& node, const std::string& key)
 namespace {
 std::string g(double v) {
   std::ostringstream os;
+  os.precision(10);  // enough to tell a value just beyond a bound from the bound
   os << v;
   return os.str();
 }
