@@ -98,7 +98,7 @@ void write_numeric(H5Writer& w, hid_t file, const std::string& path, const std::
   herr_t st = data.empty() ? 0 : H5Dwrite(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data());
   H5Dclose(ds);
   H5Sclose(space);
-  check(st, "cannot write " + path);
+  check(st, "cannot write " + path + " to " + w.final_path() + ".tmp");
   w.set_attribute(path, "units", units);
 }
 }  // namespace
@@ -127,7 +127,7 @@ void H5Writer::write(const std::string& path, const std::vector<std::string>& da
   if (ds >= 0) H5Dclose(ds);
   H5Sclose(space);
   H5Tclose(type);
-  check(st, "cannot write " + path);
+  check(st, "cannot write " + path + " to " + tmp_path_);
   set_attribute(path, "units", "1");
 }
 
@@ -138,7 +138,7 @@ void H5Writer::write_scalar(const std::string& path, const double value, const s
   herr_t st = ds < 0 ? -1 : H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value);
   if (ds >= 0) H5Dclose(ds);
   H5Sclose(space);
-  check(st, "cannot write " + path);
+  check(st, "cannot write " + path + " to " + tmp_path_);
   set_attribute(path, "units", units);
 }
 
@@ -154,7 +154,7 @@ void H5Writer::write_string(const std::string& path, const std::string& value) {
   if (ds >= 0) H5Dclose(ds);
   H5Sclose(space);
   H5Tclose(type);
-  check(st, "cannot write " + path);
+  check(st, "cannot write " + path + " to " + tmp_path_);
   set_attribute(path, "units", "1");
 }
 
@@ -172,7 +172,7 @@ void H5Writer::set_attribute(const std::string& object_path, const std::string& 
   H5Sclose(space);
   H5Tclose(type);
   H5Oclose(obj);
-  check(st, "cannot write attribute " + name + " on " + object_path);
+  check(st, "cannot write attribute " + name + " on " + object_path + " to " + tmp_path_);
 }
 
 void H5Writer::set_attribute(const std::string& object_path, const std::string& name, double value) {
@@ -184,7 +184,7 @@ void H5Writer::set_attribute(const std::string& object_path, const std::string& 
   if (attr >= 0) H5Aclose(attr);
   H5Sclose(space);
   H5Oclose(obj);
-  check(st, "cannot write attribute " + name + " on " + object_path);
+  check(st, "cannot write attribute " + name + " on " + object_path + " to " + tmp_path_);
 }
 
 void H5Writer::write_run_info(const RunInfo& info) {
@@ -197,8 +197,10 @@ void H5Writer::write_run_info(const RunInfo& info) {
 void H5Writer::commit() {
   if (committed_) return;
   check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flush failed for " + tmp_path_);
-  H5Fclose(file_);
+  const herr_t closed = H5Fclose(file_);
   file_ = -1;
+  // The close writes the last metadata: a file that failed it is not renamed into place.
+  check(closed, "cannot close " + tmp_path_);
   std::error_code ec;
   std::filesystem::rename(tmp_path_, path_, ec);
   if (ec) throw Error("cannot rename " + tmp_path_ + " to " + path_ + ": " + ec.message());
