@@ -4,6 +4,10 @@
 // one single-joint (FTi) simulation times the design's N(D+2) or N(2D+2) rows. The issue's
 // requirement is analysis < 1 % of the sweep. Usage:
 //   bench_gsa [D=10] [N=1024] [features=5] [resamples=1000] [T_END_MS=9000] [spiking|rate=rate]
+//   bench_gsa CONFIG.toml [THREADS=1]
+// The second form runs a shipped analysis the way `phasmid gsa` does (config -> design ->
+// sweep -> file -> analysis with bootstraps and convergence -> /gsa) and times the design's
+// evaluation (the sweep) against the analysis step.
 // The outputs analysed are Sobol' G functions of the design (the analysis' cost does not
 // depend on the values); the simulation is the best of 3 runs; the analysis one run.
 #include <algorithm>
@@ -13,6 +17,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "config/gsa_inputs.hpp"
 #include "features/features.hpp"
 #include "gsa/analysis.hpp"
 #include "gsa/sampling.hpp"
@@ -62,9 +67,33 @@ double simulation_seconds(double t_end, const std::string& mn) {
   return best;
 }
 
+// The shipped analysis `config`: sweep seconds, analysis seconds and their ratio.
+int bench_config(const std::string& config, int threads) {
+  const config::GsaInputs in = config::gsa_inputs(config::load_config(config), {});
+  const std::string out = "bench_gsa_design.h5";
+  std::remove(out.c_str());
+  sweep::SweepOptions o;
+  o.output = out, o.threads = threads, o.progress = false;
+  const auto t0 = std::chrono::steady_clock::now();
+  const sweep::SweepOutcome s = sweep::run_sweep(in.sweep, o);
+  const double sweep_s = seconds_since(t0);
+  if (!s.complete) return 1;
+  const auto t1 = std::chrono::steady_clock::now();
+  const gsa::GsaResult r = config::analyse_and_write(in, out, "bench_gsa");
+  const double analysis_s = seconds_since(t1);
+  std::remove(out.c_str());
+  std::printf("# bench_gsa %s: %s, %zu design rows, %zu features, %zu bootstrap resamples, %s\n", config.c_str(),
+              r.method.c_str(), s.n_points, r.features.size(), r.bootstrap.resamples, s.executor.c_str());
+  std::printf("%-22s %14s %10s\n", "design_evaluation_s", "analysis_s", "ratio_%");
+  std::printf("%-22.3f %14.4f %10.4f\n", sweep_s, analysis_s, 100.0 * analysis_s / sweep_s);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]).find(".toml") != std::string::npos)
+    return bench_config(argv[1], argc > 2 ? std::atoi(argv[2]) : 1);
   const std::size_t D = argc > 1 ? std::atoi(argv[1]) : 10;
   const std::size_t N = argc > 2 ? std::atoi(argv[2]) : 1024;
   const std::size_t F = argc > 3 ? std::atoi(argv[3]) : 5;

@@ -630,12 +630,114 @@
       }), [false, true, true, false, false, true]);
   }
 
+
+  // ------------------------------------------------------------------ global sensitivity analysis
+  // /gsa (docs/gsa.md): per feature the indices with their bootstrap intervals (whiskers), an
+  // ST heat map parameter x feature, the convergence of nested subsets and, for Morris, the
+  // mu*-sigma plane. Everything is read as the analysis stored it.
+  var whiskers = {
+    id: 'phasmidWhiskers',
+    afterDatasetsDraw: function (chart) {
+      var ctx = chart.ctx, y = chart.scales.y, area = chart.chartArea;
+      // Whiskers wider than the axis (small N) are cut at the plot area: they run off it.
+      ctx.save();
+      ctx.beginPath();
+      ctx.rect(area.left, area.top, area.right - area.left, area.bottom - area.top);
+      ctx.clip();
+      chart.data.datasets.forEach(function (ds, i) {
+        if (!ds.errors || chart.getDatasetMeta(i).hidden) return;
+        chart.getDatasetMeta(i).data.forEach(function (bar, k) {
+          var v = ds.data[k], e = ds.errors[k];
+          if (v === null || e === null || e === undefined) return;
+          var top = y.getPixelForValue(v + e), bottom = y.getPixelForValue(v - e), w = Math.max(3, (bar.width || 8) / 4);
+          ctx.strokeStyle = '#1d2330';
+          ctx.lineWidth = 1.2;
+          ctx.beginPath();
+          ctx.moveTo(bar.x, top); ctx.lineTo(bar.x, bottom);
+          ctx.moveTo(bar.x - w, top); ctx.lineTo(bar.x + w, top);
+          ctx.moveTo(bar.x - w, bottom); ctx.lineTo(bar.x + w, bottom);
+          ctx.stroke();
+        });
+      });
+      ctx.restore();
+    }
+  };
+  function gsaBars(parent, g, ft, sobol) {
+    var id = 'fig-gsa-' + safeId(ft.name), f = figure(parent, id, sobol
+      ? ft.name + ': first-order (S1) and total (ST) Sobol\' indices per parameter; whiskers: ' + Math.round(100 * g.confidence) + ' % bootstrap intervals'
+      : ft.name + ': Morris μ* (mean |elementary effect|) per parameter; whiskers: ' + Math.round(100 * g.confidence) + ' % bootstrap intervals', 300);
+    var sets = sobol
+      ? [{ label: 'S1', data: ft.S1, errors: ft.S1_conf, backgroundColor: PALETTE[0] }, { label: 'ST', data: ft.ST, errors: ft.ST_conf, backgroundColor: PALETTE[1] }]
+      : [{ label: 'μ*', data: ft.mu_star, errors: ft.mu_star_conf, backgroundColor: PALETTE[0] }];
+    draw(id, f, {
+      type: 'bar', data: { labels: g.parameter_names, datasets: sets }, plugins: [whiskers],
+      options: { plugins: { title: titleOpt(withUnits(ft.name, ft.units)) },
+        scales: { x: axis('parameter', { ticks: { autoSkip: false, maxRotation: 60 } }), y: axis(sobol ? 'index (1)' : 'μ* (' + (ft.units || '1') + ' per range)') } }
+    });
+  }
+  function gsaHeatmap(sec, g) {
+    var cells = [], max = 0;
+    g.features.forEach(function (ft) { g.parameter_names.forEach(function (p, j) { if (ft.ST[j] !== null) max = Math.max(max, ft.ST[j]); }); });
+    max = Math.min(max, 1) || 1;  // indices are fractions of a variance: above 1 is sampling noise, drawn saturated
+    g.features.forEach(function (ft) {
+      g.parameter_names.forEach(function (p, j) {
+        var v = ft.ST[j];
+        cells.push({ x: p, y: ft.name, v: v, color: v === null ? '#ddd' : ramp(VIRIDIS, Math.min(1, Math.max(0, v) / max)) });
+      });
+    });
+    var id = 'fig-gsa-heatmap', f = figure(sec, id, 'Total Sobol\' index ST of every feature (rows) with respect to every parameter (columns); grey: undefined', 80 + 28 * g.features.length);
+    heatmap(id, f, 'ST: parameter × feature', g.parameter_names, g.features.map(function (ft) { return ft.name; }), cells, 'parameter', 'feature', 'ST (1)');
+    colorbar(f.fig, VIRIDIS, 0, max, 'ST (1)');
+  }
+  function gsaConvergence(parent, g, ft, sobol) {
+    var c = ft.convergence;
+    if (!c || !c.n || c.n.length < 2) return;
+    var key = sobol ? 'ST' : 'mu_star', id = 'fig-gsa-conv-' + safeId(ft.name);
+    var f = figure(parent, id, ft.name + ': ' + (sobol ? 'ST' : 'μ*') + ' of the first n ' + (sobol ? 'base rows' : 'trajectories') + ' of the design (nested subsets), with the interval half-width as a dashed line above', 280);
+    var sets = [];
+    g.parameter_names.forEach(function (p, j) {
+      sets.push(lineDataset(p, c.n.map(function (n, k) { return { x: n, y: c[key][k][j] }; }), j, { pointRadius: 2 }));
+      sets.push(lineDataset(p + ' + half-width', c.n.map(function (n, k) {
+        var v = c[key][k][j], e = c[key + '_conf'][k][j];
+        return { x: n, y: v === null || e === null ? null : v + e };
+      }), j, { borderDash: [4, 3], borderWidth: 0.8 }));
+    });
+    draw(id, f, { type: 'line', data: { datasets: sets },
+      options: { plugins: { title: titleOpt(withUnits(ft.name, ft.units) + ': convergence'), legend: { labels: { filter: function (it) { return it.text.indexOf('half-width') < 0; } } } },
+        scales: { x: axis(sobol ? 'N (base rows used)' : 'r (trajectories used)', { type: 'logarithmic' }), y: axis(sobol ? 'ST (1)' : 'μ*') } } });
+  }
+  function gsaMorrisPlane(parent, g, ft) {
+    var id = 'fig-gsa-plane-' + safeId(ft.name), f = figure(parent, id, ft.name + ': Morris μ*–σ plane (σ large relative to μ*: nonlinear or interacting)', 300);
+    var sets = g.parameter_names.map(function (p, j) {
+      return { label: p, data: [{ x: ft.mu_star[j], y: ft.sigma[j] }], backgroundColor: PALETTE[j % PALETTE.length], pointRadius: 5 };
+    });
+    draw(id, f, { type: 'scatter', data: { datasets: sets },
+      options: { plugins: { title: titleOpt(withUnits(ft.name, ft.units) + ': μ* vs σ') }, scales: { x: axis('μ*', { beginAtZero: true }), y: axis('σ', { beginAtZero: true }) } } });
+  }
+  function gsa(g) {
+    var sobol = g.method === 'sobol';
+    var sec = section('gsa', 'Global sensitivity analysis', (sobol
+      ? 'Sobol\' indices (S1: Saltelli et al. 2010, ST: Jansen 1999) from N = ' + g.N + ' base rows (' + g.rows + ' runs)'
+      : 'Morris screening with r = ' + g.r + ' trajectories on ' + g.levels + ' levels (' + g.rows + ' runs)') +
+      ' over ' + g.parameter_names.length + ' parameters; intervals from ' + g.resamples + ' bootstrap resamples. Negative values and intervals containing 0 read as "not distinguishable from 0" (docs/gsa.md).');
+    table(sec, 'table-gsa-counts', 'Outputs per feature: blocks (Sobol\': base rows; Morris: trajectories) used and dropped for failed or undefined outputs',
+      ['feature', 'unit', 'used', 'dropped', 'non-finite outputs'],
+      g.features.map(function (ft) { return [ft.name, ft.units || '', ft.counts.n_used, ft.counts.n_dropped, ft.counts.n_nonfinite]; }), [false, false, true, true, true]);
+    if (sobol && g.features.length) gsaHeatmap(sec, g);
+    g.features.forEach(function (ft) {
+      gsaBars(sec, g, ft, sobol);
+      if (!sobol) gsaMorrisPlane(sec, g, ft);
+      gsaConvergence(sec, g, ft, sobol);
+    });
+  }
+
   // ------------------------------------------------------------------ main
   try {
     header();
     if (DATA.trajectory) trajectory(DATA.trajectory);
     if (DATA.sensitivity) sensitivity(DATA.sensitivity);
     if (DATA.fit) fit(DATA.fit);
+    if (DATA.gsa) gsa(DATA.gsa);
     if (DATA.sweep) sweep(DATA.sweep);
     if (DATA.features) features(DATA.features);
     if (DATA.parameters) parameters(DATA.parameters);

@@ -64,9 +64,9 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
   const std::string verb = app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name();
-  if (phasmid::dist::size() > 1 && verb != "sweep" && verb != "fit") {  // every rank would write the same file
+  if (phasmid::dist::size() > 1 && verb != "sweep" && verb != "fit" && verb != "gsa") {  // every rank would write the same file
     if (phasmid::dist::rank() == 0)
-      std::cerr << "phasmid: error: phasmid " << verb << " runs in one process; under mpirun only sweep and fit use "
+      std::cerr << "phasmid: error: phasmid " << verb << " runs in one process; under mpirun only sweep, fit and gsa use "
                 << "several ranks (docs/cluster.md)\n";
     return 1;
   }

@@ -1,8 +1,8 @@
 // phasmid demo [-o DIR]: the main job on embedded defaults. It runs the real verbs of this
 // same binary, one after another, so the demo exercises exactly what users run:
 //   simulate the single FTi joint network, fit the FTi mechanics to Section 3.1's targets,
-//   compute the network's sensitivities, run a small intersegmental-coupling sweep,
-//   and write one HTML report per HDF5 file.
+//   compute the network's sensitivities, run a small intersegmental-coupling sweep and a
+//   small global sensitivity analysis, and write one HTML report per HDF5 file.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -36,6 +36,8 @@ const DemoStep kSteps[] = {
      "sensitivities of period, phase ratio and extremal angles of the FTi network"},
     {"sweep", "configs/demo_coupling_sweep.toml", "demo_coupling_sweep.h5",
      "small sweep of the intersegmental coupling of the three-leg network"},
+    {"gsa", "configs/gsa_single_joint.toml", "gsa_single_joint.h5",
+     "Sobol' indices of the FTi network's period, flexion fraction and angles over its drives (rate motoneurons)"},
 };
 
 std::string self_path() {
@@ -104,7 +106,7 @@ int run_demo(const std::string& dir_arg) {
   return 0;
 }
 
-const RegisterVerb reg{{"demo", "Run the main job on embedded defaults: simulate, fit, sensitivities, sweep, reports",
+const RegisterVerb reg{{"demo", "Run the main job on embedded defaults: simulate, fit, sensitivities, sweep, global sensitivities, reports",
                         [](CLI::App& sub) {
                           auto dir = std::make_shared<std::string>();
                           sub.add_option("-o,--output", *dir, "output directory (default demo_output)");

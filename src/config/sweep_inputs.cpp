@@ -7,10 +7,14 @@
 namespace phasmid::config {
 
 sweep::SweepInputs sweep_inputs(const Config& cfg, const std::vector<std::string>& sets) {
+  return sweep_inputs(cfg, sets, sweep::parse_sweep);
+}
+
+sweep::SweepInputs sweep_inputs(const Config& cfg, const std::vector<std::string>& sets, const DesignReader& design) {
   sweep::SweepInputs in;
   std::unique_ptr<scenario::Scenario> base = build_scenario(cfg, sets);
   in.settings = simulation_settings(cfg, base.get());
-  in.spec = sweep::parse_sweep(cfg, base->parameters(), in.settings);
+  in.spec = design(cfg, base->parameters(), in.settings);
   in.resolved_config = resolved_config_text(cfg, sets);
   in.config_text = cfg.text;
   in.config_path = cfg.path;

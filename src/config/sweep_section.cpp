@@ -309,15 +309,23 @@ void repeat_per_combination(const config::Config& cfg, const toml::node& sn, Swe
 
 }  // namespace
 
-SweepSpec parse_sweep(const config::Config& cfg, const model::ParameterSet& params,
-                      const config::SimulationSettings& sim) {
+namespace {
+// [sweep] with its [[sweep.parameter]] tables; with `explicit_points` (the caller's design) only
+// ranges and run length are read and the design keys are refused.
+SweepSpec parse_sweep_section(const config::Config& cfg, const model::ParameterSet& params,
+                              const config::SimulationSettings& sim, bool explicit_points) {
   const toml::node* sn = cfg.table.get("sweep");
   if (!sn) throw Error(cfg.path + ": missing [sweep] section (docs/sweep.md)");
   const toml::table* st = sn->as_table();
   if (!st) throw Error(where(cfg, *sn) + ": 'sweep' must be a table ([sweep])");
-  check_keys(cfg, *st, "sweep", {"design", "points", "seed", "t_end_ms", "discard_ms", "parameter", "option", "range_of"});
+  if (explicit_points)
+    check_keys(cfg, *st, "sweep (its points come from [gsa])", {"t_end_ms", "discard_ms", "parameter"});
+  else
+    check_keys(cfg, *st, "sweep", {"design", "points", "seed", "t_end_ms", "discard_ms", "parameter", "option", "range_of"});
   SweepSpec spec;
-  const toml::node* points_node = parse_design(cfg, *st, spec);
+  const toml::node* points_node = nullptr;
+  if (explicit_points) spec.design = Design::Explicit, spec.design_name = "explicit";
+  else points_node = parse_design(cfg, *st, spec);
   parse_run_length(cfg, *st, *sn, sim, spec);
 
   const toml::node* pn = st->get("parameter");
@@ -334,6 +342,7 @@ SweepSpec parse_sweep(const config::Config& cfg, const model::ParameterSet& para
     else parse_single(cfg, t, el, lookup, points_node, n_axes, spec);
     ++n_axes;
   }
+  if (spec.design == Design::Explicit) return spec;  // the caller sets the points (set_unit_points)
   if (spec.design == Design::Grid) grid_points(cfg, *sn, n_axes, spec);
   else if (spec.design == Design::OneAtATime) one_at_a_time_points(spec);
   else sampled_points(cfg, *sn, pn, points_node, spec);
@@ -342,6 +351,17 @@ SweepSpec parse_sweep(const config::Config& cfg, const model::ParameterSet& para
     throw Error(where(cfg, *st->get("range_of")) + ": 'range_of' needs a sweep without [[sweep.option]]");
   repeat_per_combination(cfg, *sn, spec);
   return spec;
+}
+}  // namespace
+
+SweepSpec parse_sweep(const config::Config& cfg, const model::ParameterSet& params,
+                      const config::SimulationSettings& sim) {
+  return parse_sweep_section(cfg, params, sim, false);
+}
+
+SweepSpec parse_sweep_ranges(const config::Config& cfg, const model::ParameterSet& params,
+                             const config::SimulationSettings& sim) {
+  return parse_sweep_section(cfg, params, sim, true);
 }
 
 

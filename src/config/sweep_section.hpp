@@ -13,6 +13,13 @@ namespace phasmid::sweep {
 SweepSpec parse_sweep(const config::Config& cfg, const model::ParameterSet& params,
                       const config::SimulationSettings& sim);
 
+// The [sweep] section of an analysis that supplies its own points (Design::Explicit, e.g.
+// `phasmid gsa`): the [[sweep.parameter]] ranges (lower, upper, scale) and the run length only;
+// design, points, seed, options and per-parameter values are refused. The spec has no points
+// yet: give them with set_unit_points.
+SweepSpec parse_sweep_ranges(const config::Config& cfg, const model::ParameterSet& params,
+                             const config::SimulationSettings& sim);
+
 // The config with combination `combo`'s option values written into [model].
 config::Config config_for(const config::Config& cfg, const SweepSpec& spec, std::size_t combo);
 

@@ -373,6 +373,27 @@ std::vector<DualFeature> leg_features(const model::OdeModel& model, const solver
   return out;
 }
 
+bool has_three_contact_legs(const model::OdeModel& model) {
+  return model.contact_leg("hind") && model.contact_leg("middle") && model.contact_leg("front");
+}
+
+// Derived 0/1 features, present at every run (not omitted like the others), so that a global
+// sensitivity analysis can take the probability of a rhythm or a gait (docs/features.md):
+// `oscillates` when the first channel has a period over the window; with three contact legs
+// `is_tripod` / `is_tetrapod` when gait_class is 2 / 1 (0 where it is irregular or undefined).
+// Classes, piecewise constant in the parameters: zero gradient.
+void derived_features(const model::OdeModel& model, bool oscillates, size_t ns, std::vector<DualFeature>& out) {
+  if (model.angles().empty()) return;
+  auto indicator = [&](bool on) { return Dual{on ? 1.0 : 0.0, Eigen::VectorXd::Zero(ns)}; };
+  out.push_back({"oscillates", indicator(oscillates), "1"});
+  if (!has_three_contact_legs(model)) return;
+  double gait = 0;
+  for (const DualFeature& f : out)
+    if (f.name == "gait_class") gait = f.value.v;
+  out.push_back({"is_tripod", indicator(gait == 2), "1"});
+  out.push_back({"is_tetrapod", indicator(gait == 1), "1"});
+}
+
 std::vector<DualFeature> compute(const model::OdeModel& model, const solver::SolveResult& res,
                                  const FeatureOptions& opt, bool with_grad) {
   const size_t ns = with_grad ? res.sens_params.size() : 0;
@@ -429,6 +450,7 @@ std::vector<DualFeature> compute(const model::OdeModel& model, const solver::Sol
     if (!a_max.empty()) out.push_back({pre + "angle_max_deg", mean(a_max, ns), "deg"});
   }
   for (auto& f : leg_features(model, res, opt, with_grad, roots)) out.push_back(std::move(f));
+  derived_features(model, have_global, ns, out);
   return out;
 }
 
@@ -486,6 +508,12 @@ std::vector<FeatureInfo> feature_catalogue(const model::OdeModel& model) {
   std::vector<FeatureInfo> out;
   channel_catalogue(model, out);
   leg_catalogue(model, out);
+  if (model.angles().empty()) return out;
+  out.push_back({"oscillates", "1", false, "1 when the first angle channel has a period over the window (the rhythm exists), else 0"});
+  if (has_three_contact_legs(model)) {
+    out.push_back({"is_tripod", "1", false, "1 when gait_class is 2 (tripod), else 0 (also where the gait is undefined)"});
+    out.push_back({"is_tetrapod", "1", false, "1 when gait_class is 1 (tetrapod), else 0 (also where the gait is undefined)"});
+  }
   return out;
 }
 

@@ -13,23 +13,26 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Running mean and variance of bootstrap replicates, one slot per index (Welford).
+// Running mean and variance of bootstrap replicates, per slot. A replicate that is not finite
+// in a slot (a resample whose outputs are all equal has no variance to apportion, which happens
+// for rare 0/1 outputs) is left out of that slot.
 struct Spread {
   std::vector<double> mean, m2;
-  std::size_t n = 0;
-  explicit Spread(std::size_t k) : mean(k, 0.0), m2(k, 0.0) {}
+  std::vector<std::size_t> n;
+  explicit Spread(std::size_t k) : mean(k, 0.0), m2(k, 0.0), n(k, 0) {}
   void add(const std::vector<double>& x) {
-    ++n;
     for (std::size_t i = 0; i < x.size(); ++i) {
+      if (!std::isfinite(x[i])) continue;
       const double d = x[i] - mean[i];
-      mean[i] += d / n;
+      mean[i] += d / static_cast<double>(++n[i]);
       m2[i] += d * (x[i] - mean[i]);
     }
   }
-  // z * sd (divisor n-1) per slot; NaN with fewer than two replicates.
+  // z * sd (divisor n-1) per slot; NaN with fewer than two finite replicates.
   std::vector<double> half_width(double z) const {
     std::vector<double> out(mean.size(), kNaN);
-    if (n < 2) return out;
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = z * std::sqrt(m2[i] / (n - 1));
+    for (std::size_t i = 0; i < out.size(); ++i)
+      if (n[i] >= 2) out[i] = z * std::sqrt(m2[i] / static_cast<double>(n[i] - 1));
     return out;
   }
 };

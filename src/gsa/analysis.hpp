@@ -18,7 +18,8 @@
 // resampled with replacement `resamples` times and every index is recomputed; the interval is
 // index +- z * (standard deviation of the bootstrap replicates, divisor B-1), z the standard
 // normal quantile at (1 + confidence)/2 (normal approximation, as SALib). *_conf holds the
-// half-width z * sd.
+// half-width z * sd. A replicate whose resampled outputs are all equal (no variance; possible
+// for rare 0/1 outputs) has no indices and is left out of the standard deviation.
 #include <cstdint>
 #include <vector>
 

@@ -1,6 +1,8 @@
 #include "gsa/gsa_h5.hpp"
 
+#include <cstdint>
 #include <string>
+#include <utility>
 
 #include "common/error.hpp"
 
@@ -76,6 +78,33 @@ void write_counts(io::H5Writer& w, const std::string& g, const OutputCounts& c) 
   w.set_attribute(g, "n_used", static_cast<double>(c.n_used));
 }
 
+// Rows of per-parameter vectors (one row per subset size) as one levels x D dataset.
+template <class Indices>
+void write_rows(io::H5Writer& w, const std::string& path, const std::vector<Indices>& levels,
+                std::vector<double> Indices::*field, const std::string& unit, std::size_t dim) {
+  std::vector<double> m;
+  for (const Indices& x : levels) m.insert(m.end(), (x.*field).begin(), (x.*field).end());
+  w.write(path, m, unit, {h(levels.size()), h(dim)});
+}
+
+void write_convergence(io::H5Writer& w, const GsaResult& r, const FeatureResult& f) {
+  if (f.convergence_n.empty()) return;
+  const std::string g = "/gsa/" + f.name + "/convergence";
+  const std::size_t dim = r.parameters.size();
+  std::vector<std::int64_t> n(f.convergence_n.begin(), f.convergence_n.end());
+  w.write(g + "/n", n, "1");
+  if (r.method == "sobol") {
+    using Field = std::vector<double> SobolIndices::*;
+    const std::pair<const char*, Field> fields[] = {
+        {"S1", &SobolIndices::S1}, {"S1_conf", &SobolIndices::S1_conf}, {"ST", &SobolIndices::ST}, {"ST_conf", &SobolIndices::ST_conf}};
+    for (const auto& [name, field] : fields) write_rows(w, g + "/" + name, f.sobol_convergence, field, "1", dim);
+  } else {
+    write_rows(w, g + "/mu_star", f.morris_convergence, &MorrisIndices::mu_star, f.unit, dim);
+    write_rows(w, g + "/mu_star_conf", f.morris_convergence, &MorrisIndices::mu_star_conf, f.unit, dim);
+    write_rows(w, g + "/sigma", f.morris_convergence, &MorrisIndices::sigma, f.unit, dim);
+  }
+}
+
 void write_feature(io::H5Writer& w, const GsaResult& r, const FeatureResult& f) {
   if (f.name.empty() || f.name == "design" || f.name.find('/') != std::string::npos)
     throw Error("gsa: '" + f.name + "' cannot be a feature name in /gsa (empty, 'design' or containing '/')");
@@ -99,6 +128,7 @@ void write_feature(io::H5Writer& w, const GsaResult& r, const FeatureResult& f) 
     write_counts(w, g, m.counts);
   }
   w.set_attribute(g, "units", f.unit);
+  write_convergence(w, r, f);
 }
 
 std::size_t count_attr(const io::H5Reader& r, const std::string& path, const std::string& name) {
@@ -139,6 +169,34 @@ void read_design(const io::H5Reader& r, GsaResult& out) {
   }
 }
 
+// Splits a levels x D dataset back into the rows of `levels`.
+template <class Indices>
+void read_rows(const io::H5Reader& r, const std::string& path, std::vector<Indices>& levels,
+               std::vector<double> Indices::*field, std::size_t dim) {
+  const std::vector<double> m = r.read_doubles(path);
+  if (m.size() != levels.size() * dim) throw Error(r.path() + ": " + path + " is not one row of D values per subset");
+  for (std::size_t k = 0; k < levels.size(); ++k) (levels[k].*field).assign(m.begin() + k * dim, m.begin() + (k + 1) * dim);
+}
+
+void read_convergence(const io::H5Reader& r, const GsaResult& res, FeatureResult& f) {
+  const std::string g = "/gsa/" + f.name + "/convergence";
+  if (!r.exists(g)) return;
+  for (double n : r.read_doubles(g + "/n")) f.convergence_n.push_back(static_cast<std::size_t>(n));
+  const std::size_t dim = res.parameters.size(), levels = f.convergence_n.size();
+  if (res.method == "sobol") {
+    f.sobol_convergence.resize(levels);
+    read_rows(r, g + "/S1", f.sobol_convergence, &SobolIndices::S1, dim);
+    read_rows(r, g + "/S1_conf", f.sobol_convergence, &SobolIndices::S1_conf, dim);
+    read_rows(r, g + "/ST", f.sobol_convergence, &SobolIndices::ST, dim);
+    read_rows(r, g + "/ST_conf", f.sobol_convergence, &SobolIndices::ST_conf, dim);
+  } else {
+    f.morris_convergence.resize(levels);
+    read_rows(r, g + "/mu_star", f.morris_convergence, &MorrisIndices::mu_star, dim);
+    read_rows(r, g + "/mu_star_conf", f.morris_convergence, &MorrisIndices::mu_star_conf, dim);
+    read_rows(r, g + "/sigma", f.morris_convergence, &MorrisIndices::sigma, dim);
+  }
+}
+
 FeatureResult read_feature(const io::H5Reader& r, const GsaResult& res, const std::string& name) {
   const std::string g = "/gsa/" + name;
   FeatureResult f;
@@ -158,6 +216,7 @@ FeatureResult read_feature(const io::H5Reader& r, const GsaResult& res, const st
     m.mu_star_conf = r.read_doubles(g + "/mu_star_conf"), m.sigma = r.read_doubles(g + "/sigma");
     m.counts = read_counts(r, g);
   }
+  read_convergence(r, res, f);
   return f;
 }
 

@@ -10,6 +10,8 @@
 //   /gsa/<feature>/Y          the feature at every design row (NaN where undefined or failed)
 //   /gsa/<feature>/S1, S1_conf, ST, ST_conf [, S2, S2_conf (D x D, upper triangle)]   Sobol'
 //   /gsa/<feature>/mu, mu_star, mu_star_conf, sigma                                   Morris
+//   /gsa/<feature>/convergence/n and, per n (rows), S1, S1_conf, ST, ST_conf (Sobol') or
+//                             mu_star, mu_star_conf, sigma (Morris): indices of nested subsets
 // Each feature group carries `units` (the feature's), n_nonfinite, n_dropped, n_used (and
 // `variance` for Sobol'). Every dataset has a `units` attribute. "design" is not a feature name.
 #include <string>
@@ -26,6 +28,11 @@ struct FeatureResult {
   std::vector<double> y;  // one output per design row, in row order
   SobolIndices sobol;     // method "sobol"
   MorrisIndices morris;   // method "morris"
+  // Indices of nested subsets, the first convergence_n[k] base rows (Sobol') or trajectories
+  // (Morris), with their intervals: /gsa/<feature>/convergence (empty: not computed).
+  std::vector<std::size_t> convergence_n;
+  std::vector<SobolIndices> sobol_convergence;
+  std::vector<MorrisIndices> morris_convergence;
 };
 
 struct GsaResult {

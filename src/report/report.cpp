@@ -16,6 +16,7 @@
 #include "io/h5_file.hpp"
 #include "io/output_path.hpp"
 #include "sweep/ranges.hpp"
+#include "report/gsa_panels.hpp"
 
 namespace phasmid::report {
 namespace {
@@ -588,6 +589,8 @@ nlohmann::json extract(const std::string& h5_path, std::size_t max_points) {
         extract_fit(r, out, max_points);
       else if (top == "sweep")
         extract_sweep(r, out);
+      else if (top == "gsa")
+        out["gsa"] = extract_gsa(r);
       else
         note_ignored(out, p);
     } catch (const Error& e) {

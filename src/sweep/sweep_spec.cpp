@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/error.hpp"
+
 namespace phasmid::sweep {
 
 std::vector<std::string> SweepSpec::names() const {
@@ -20,6 +22,19 @@ double map_unit(const SweptParameter& p, double u) {
   double x = p.log_scale ? std::exp(std::log(p.lower) + u * (std::log(p.upper) - std::log(p.lower)))
                          : p.lower + u * (p.upper - p.lower);
   return std::min(std::max(x, p.lower), p.upper);  // rounding never leaves [lower, upper]
+}
+
+void set_unit_points(SweepSpec& spec, const std::vector<double>& unit) {
+  const std::size_t dim = spec.parameters.size();
+  if (dim == 0 || unit.size() % dim != 0)
+    throw Error("sweep: " + std::to_string(unit.size()) + " unit-cube values are not whole rows of " + std::to_string(dim) +
+                " parameters");
+  if (!spec.options.empty()) throw Error("sweep: explicit points cannot be combined with [[sweep.option]]");
+  spec.n_design = unit.size() / dim;
+  spec.n_combos = 1;
+  spec.n_points = spec.n_design;
+  spec.points.resize(unit.size());
+  for (std::size_t i = 0; i < unit.size(); ++i) spec.points[i] = map_unit(spec.parameters[i % dim], unit[i]);
 }
 
 std::size_t SweepSpec::option_value(std::size_t combo, std::size_t k) const {

@@ -11,8 +11,9 @@ namespace phasmid::sweep {
 
 // Grid: the full factorial of the parameters' axes; Lhs, Sobol: `points` samples of the
 // parameters' ranges; OneAtATime: each parameter over its own axis with the others at their
-// base values (local stability ranges, e.g. Cruse's Table 1).
-enum class Design { Grid, Lhs, Sobol, OneAtATime };
+// base values (local stability ranges, e.g. Cruse's Table 1); Explicit: points the caller
+// supplies as unit-cube rows (set_unit_points), e.g. the design of a global sensitivity analysis.
+enum class Design { Grid, Lhs, Sobol, OneAtATime, Explicit };
 
 struct SweptParameter {
   std::string name;
@@ -57,5 +58,9 @@ struct SweepSpec {
 // Unit interval -> parameter value: linear in [lower, upper], or in log with log_scale;
 // clamped so that rounding never leaves [lower, upper]. Shared with gsa/sampling.
 double map_unit(const SweptParameter& p, double u);
+
+// Design::Explicit: the sweep's points are `unit` (rows x parameters, row-major, in [0,1]),
+// mapped to each parameter's range by map_unit. Replaces any points the spec had.
+void set_unit_points(SweepSpec& spec, const std::vector<double>& unit);
 
 }  // namespace phasmid::sweep

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The README's main job: `phasmid demo -o DIR` on embedded defaults, run from a directory
-# without the source tree, writes the four HDF5 files, one HTML report each, and exits 0.
+# without the source tree, writes the five HDF5 files, one HTML report each, and exits 0.
 set -u
 PHASMID="$1"; SRC="$2"
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
@@ -8,7 +8,7 @@ fail=0; pass=0
 cd "$tmp" || exit 1
 "$PHASMID" demo -o "$tmp/demo" >"$tmp/out" 2>"$tmp/err"; rc=$?
 [ $rc -eq 0 ] && pass=$((pass+1)) || { echo "FAIL: demo exit $rc: $(tail -3 "$tmp/err")"; fail=$((fail+1)); }
-for f in single_joint_fti fit_fti_section31 sensitivity_single_joint demo_coupling_sweep; do
+for f in single_joint_fti fit_fti_section31 sensitivity_single_joint demo_coupling_sweep gsa_single_joint; do
   if [ -s "$tmp/demo/$f.h5" ] && [ -s "$tmp/demo/$f.html" ] && [ ! -e "$tmp/demo/$f.h5.tmp" ]; then pass=$((pass+1))
   else echo "FAIL: demo/$f.h5 or .html missing (or a .tmp left)"; ls -la "$tmp/demo"; fail=$((fail+1)); fi
 done

@@ -96,11 +96,17 @@ TEST(FeatureCatalogue, WalkingModelsListTheirLegsFeatures) {
   EXPECT_TRUE(cat.at("phase_lag.hind_to_middle").differentiable);
   EXPECT_TRUE(cat.count("middle.fti.phase_lag")) << "phase lag of every channel after the first";
   EXPECT_FALSE(cat.count("front.thc.phase_lag")) << "the first channel has no lag to itself";
-  // 9 channels x 7 + 8 lags + global period, 3 legs x 8, 4 leg pairs, gait_class.
-  EXPECT_EQ(cat.size(), 9u * 7 + 8 + 1 + 3 * 8 + 4 + 1);
+  // 9 channels x 7 + 8 lags + global period, 3 legs x 8, 4 leg pairs, gait_class, and the
+  // derived 0/1 features oscillates, is_tripod, is_tetrapod.
+  EXPECT_EQ(cat.size(), 9u * 7 + 8 + 1 + 3 * 8 + 4 + 1 + 3);
+  for (const char* n : {"oscillates", "is_tripod", "is_tetrapod"}) {
+    ASSERT_TRUE(cat.count(n)) << n;
+    EXPECT_FALSE(cat.at(n).differentiable) << n;
+    EXPECT_EQ(cat.at(n).unit, "1") << n;
+  }
   auto mj = config::build_model(load({"fti_mechanical.toml", false, 0, 0, false}));
-  // One channel: global period + 7 channel features, no leg features.
-  EXPECT_EQ(features::feature_catalogue(*mj).size(), 8u);
+  // One channel: global period + 7 channel features + oscillates, no leg features.
+  EXPECT_EQ(features::feature_catalogue(*mj).size(), 9u);
 }
 
 TEST(FeatureCatalogue, EveryDifferentiableFeatureHasAGradient) {

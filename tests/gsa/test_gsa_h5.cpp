@@ -39,7 +39,7 @@ GsaResult ishigami_result(const std::string& method) {
     r.morris_options.pool = 12;
     r.morris = morris_sample(3, r.morris_options);
   }
-  f.y = gsa_test::evaluate(gsa_test::Ishigami{}, scale_to_parameters(r.unit_design(), r.parameters), 3);
+  f.y = gsa_test::evaluate("ishigami", scale_to_parameters(r.unit_design(), r.parameters), 3);
   f.y[5] = std::numeric_limits<double>::quiet_NaN();
   if (method == "sobol") f.sobol = sobol_analyze(3, true, f.y, r.bootstrap);
   else f.morris = morris_analyze(r.morris, f.y, r.bootstrap);

@@ -7,6 +7,7 @@
 
 #include "common/error.hpp"
 #include "gsa/analysis.hpp"
+#include "gsa/gsa_h5.hpp"
 #include "gsa/sampling.hpp"
 #include "gsa_test_functions.hpp"
 
@@ -15,11 +16,14 @@ using gsa_test::Ishigami;
 
 namespace {
 
-MorrisIndices ishigami_morris(const MorrisDesign& d) {
-  const auto y = gsa_test::evaluate(Ishigami{}, scale_to_parameters(d.unit, Ishigami::parameters()), 3);
-  BootstrapOptions bo;
-  bo.resamples = 500;
-  return morris_analyze(d, y, bo);
+// Morris on the registered kind "ishigami", run by `phasmid gsa`'s path on the sweep engine.
+phasmid::config::Config morris_config(std::size_t pool) {
+  std::string text = "[model]\ntype = \"ishigami\"\n";
+  for (const char* x : {"x1", "x2", "x3"})
+    text += std::string("[[sweep.parameter]]\nname = \"") + x + "\"\nlower = -3.141592653589793\nupper = 3.141592653589793\n";
+  text += "[gsa]\nmethod = \"morris\"\ntrajectories = 20\nlevels = 4\nseed = 11\nbootstrap = 500\nfeatures = [\"y\"]\npool = " +
+          std::to_string(pool) + "\n";
+  return phasmid::config::parse_config(text, "morris_test.toml");
 }
 
 }  // namespace
@@ -31,14 +35,11 @@ MorrisIndices ishigami_morris(const MorrisDesign& d) {
 // mu*(x2) = 7.875 for any trajectories.
 TEST(GsaMorris, IshigamiMuStarOfX2Is7875WithFourLevels) {
   for (std::size_t pool : {std::size_t(0), std::size_t(40)}) {
-    MorrisOptions mo;
-    mo.trajectories = 20;
-    mo.levels = 4;
-    mo.pool = pool;
-    mo.seed = 11;
-    const MorrisDesign d = morris_sample(3, mo);
-    EXPECT_DOUBLE_EQ(d.delta, 2.0 / 3.0);
-    const MorrisIndices m = ishigami_morris(d);
+    const GsaResult r = gsa_test::run_gsa(morris_config(pool), "gsa_morris.h5");
+    EXPECT_DOUBLE_EQ(r.morris.delta, 2.0 / 3.0);
+    EXPECT_EQ(r.morris.rows(), 20u * 4);
+    ASSERT_EQ(r.features.size(), 1u);
+    const MorrisIndices& m = r.features[0].morris;
     EXPECT_NEAR(m.mu_star[1], 7.875, 1e-12) << "pool " << pool;
     EXPECT_NEAR(m.mu_star_conf[1], 0.0, 1e-12) << "all effects of x2 have the same magnitude";
     EXPECT_LE(std::fabs(m.mu[1]), 7.875 + 1e-12);
@@ -111,7 +112,7 @@ TEST(GsaMorris, TrajectoryWithNonFiniteOutputIsDropped) {
   mo.trajectories = 10;
   mo.seed = 2;
   const MorrisDesign d = morris_sample(3, mo);
-  auto y = gsa_test::evaluate(Ishigami{}, scale_to_parameters(d.unit, Ishigami::parameters()), 3);
+  auto y = gsa_test::evaluate("ishigami", scale_to_parameters(d.unit, Ishigami::parameters()), 3);
   y[2 * 4 + 1] = std::numeric_limits<double>::quiet_NaN();  // trajectory 2
   y[7 * 4 + 3] = std::numeric_limits<double>::quiet_NaN();  // trajectory 7
   BootstrapOptions bo;

@@ -1,9 +1,16 @@
 // Sobol' indices against analytic values (Ishigami, Sobol' G function), as SALib checks
-// itself, and a test of the bootstrap intervals' coverage.
+// itself, and a test of the bootstrap intervals' coverage. The functions are the registered
+// model kinds "ishigami" and "sobol_g": Ishigami runs through `phasmid gsa` and its HDF5 file,
+// the G function through the sweep engine in-process, the repeated analyses through the
+// kind's scenario.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <limits>
+
+#include "build_info.hpp"
 
 #include "common/error.hpp"
 #include "gsa/analysis.hpp"
@@ -22,8 +29,7 @@ SobolIndices ishigami_indices(std::size_t n, std::uint64_t seed, std::size_t res
   so.second_order = true;
   so.seed = seed;
   const SaltelliDesign d = saltelli_sample(3, so);
-  const std::vector<double> y =
-      gsa_test::evaluate(Ishigami{}, scale_to_parameters(d.unit, Ishigami::parameters()), 3);
+  const std::vector<double> y = gsa_test::evaluate("ishigami", scale_to_parameters(d.unit, Ishigami::parameters()), 3);
   BootstrapOptions bo;
   bo.resamples = resamples;
   bo.seed = seed + 1000;
@@ -34,13 +40,23 @@ double tol(double ref) { return 0.05 + 0.1 * std::fabs(ref); }
 
 }  // namespace
 
-TEST(GsaSobol, IshigamiIndicesAtN8192) {
+// configs/gsa_ishigami.toml (N = 8192, second order, seed 1) through the CLI verb; the indices
+// are read back from the file it wrote.
+TEST(GsaSobol, IshigamiIndicesAtN8192ThroughTheCli) {
   const Ishigami f;
   // The reference values are the rounded analytic ones.
   EXPECT_NEAR(f.v1() / f.variance(), 0.3139, 1e-4);
   EXPECT_NEAR(f.v2() / f.variance(), 0.4424, 1e-4);
   EXPECT_NEAR(f.v13() / f.variance(), 0.2437, 1e-4);
-  const SobolIndices s = ishigami_indices(8192, 1, 100);
+  const auto out = (std::filesystem::temp_directory_path() / "gsa_ishigami_cli.h5").string();
+  std::filesystem::remove(out);
+  const std::string cmd = std::string(PHASMID_BINARY) + " gsa configs/gsa_ishigami.toml -q -j 2 -o " + out;
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  phasmid::io::H5Reader file(out);
+  EXPECT_EQ(file.read_doubles("/sweep/points").size(), 8192u * 8 * 3) << "N(2D+2) design points swept";
+  const GsaResult r = read_gsa_h5(file);
+  ASSERT_EQ(r.features.size(), 1u);
+  const SobolIndices& s = r.features[0].sobol;
   const double s1[3] = {0.3139, 0.4424, 0.0}, st[3] = {0.5576, 0.4424, 0.2437};
   for (int j = 0; j < 3; ++j) {
     EXPECT_NEAR(s.S1[j], s1[j], tol(s1[j])) << "S1 of x" << j + 1;
@@ -53,23 +69,26 @@ TEST(GsaSobol, IshigamiIndicesAtN8192) {
   EXPECT_NEAR(s.variance, f.variance(), 0.02 * f.variance());
   EXPECT_EQ(s.counts.n_used, 8192u);
   EXPECT_EQ(s.counts.n_dropped, 0u);
+  // Convergence: nested subsets 8, 16, ..., 8192; the last is the full analysis.
+  const FeatureResult& y = r.features[0];
+  ASSERT_EQ(y.convergence_n.size(), 11u);
+  EXPECT_EQ(y.convergence_n.front(), 8u);
+  EXPECT_EQ(y.convergence_n.back(), 8192u);
+  for (int j = 0; j < 3; ++j) EXPECT_EQ(y.sobol_convergence.back().ST[j], s.ST[j]);
+  // Half-widths shrink roughly like 1/sqrt(n): 1024 -> 8192 narrows them by at least 2.
+  EXPECT_GT(y.sobol_convergence[7].ST_conf[0], 2 * y.sobol_convergence[10].ST_conf[0]);
 }
 
-TEST(GsaSobol, GFunctionFirstOrderWithin001) {
+// configs/gsa_sobol_g.toml (N = 8192, first and total order) on the sweep engine.
+TEST(GsaSobol, GFunctionFirstOrderWithin001OnTheSweepEngine) {
   const GFunction g{{78, 12, 0.5, 2, 97, 33}};
-  SaltelliOptions so;
-  so.n_base = 8192;
-  so.second_order = false;
-  so.seed = 7;
-  const SaltelliDesign d = saltelli_sample(6, so);
-  const auto y = gsa_test::evaluate(g, scale_to_parameters(d.unit, g.parameters()), 6);
-  BootstrapOptions bo;
-  bo.resamples = 0;
-  const SobolIndices s = sobol_analyze(6, false, y, bo);
+  const GsaResult r = gsa_test::run_gsa(phasmid::config::load_config("configs/gsa_sobol_g.toml"), "gsa_sobol_g.h5");
+  ASSERT_EQ(r.features.size(), 1u);
+  const SobolIndices& s = r.features[0].sobol;
   EXPECT_TRUE(s.S2.empty());
   for (std::size_t j = 0; j < 6; ++j) {
     EXPECT_NEAR(s.S1[j], g.s1(j), 0.01) << "S1 of x" << j + 1;
-    EXPECT_TRUE(std::isnan(s.S1_conf[j])) << "no resamples, no interval";
+    EXPECT_LE(std::fabs(s.S1[j] - g.s1(j)), s.S1_conf[j]) << "the 95 % interval of x" << j + 1 << " covers the analytic value";
   }
 }
 
@@ -105,7 +124,7 @@ TEST(GsaSobol, NonFiniteOutputsDropTheirBlock) {
   so.second_order = true;
   so.seed = 3;
   const SaltelliDesign d = saltelli_sample(3, so);
-  std::vector<double> y = gsa_test::evaluate(Ishigami{}, scale_to_parameters(d.unit, Ishigami::parameters()), 3);
+  std::vector<double> y = gsa_test::evaluate("ishigami", scale_to_parameters(d.unit, Ishigami::parameters()), 3);
   const std::size_t blk = d.block();
   std::vector<double> kept;
   std::size_t n_failed_blocks = 0, n_bad = 0;
@@ -132,6 +151,31 @@ TEST(GsaSobol, NonFiniteOutputsDropTheirBlock) {
     EXPECT_EQ(with_nan.ST[j], clean.ST[j]);
   }
   EXPECT_EQ(with_nan.S2[2], clean.S2[2]);
+}
+
+// A rare 0/1 output: only base row 0's block varies, so about a third of the resamples (those
+// without row 0) have no variance and no indices. The interval comes from the others.
+TEST(GsaSobol, BootstrapSkipsResamplesWithoutVariance) {
+  const std::size_t dim = 2, block = dim + 2, n = 20;
+  std::vector<double> y(n * block, 0.0);
+  y[0] = 1.0;          // f(A_0) = 1: x1 and x2 both matter through AB rows equal to 0
+  y[block - 1] = 1.0;  // f(B_0) = 1
+  y[1] = 1.0;          // f(AB(1)_0) = 1: changing x1 alone keeps the output
+  BootstrapOptions bo;
+  bo.resamples = 200;
+  bo.seed = 5;
+  const SobolIndices s = sobol_analyze(dim, false, y, bo);
+  for (std::size_t j = 0; j < dim; ++j) {
+    EXPECT_TRUE(std::isfinite(s.ST[j])) << j;
+    EXPECT_TRUE(std::isfinite(s.ST_conf[j])) << "interval from the resamples that contain row 0, x" << j + 1;
+  }
+  EXPECT_GT(s.ST_conf[1], 0.0);
+  EXPECT_EQ(s.ST_conf[0], 0.0) << "x1's ST is 0 in every resample";
+  // Analytic on these outputs: V = var of {1, 0 x 19, 1, 0 x 19} (divisor 40) = 2/40 - (2/40)^2;
+  // ST_2 = mean((f_A - f_AB(2))^2) / (2V) = (1/20) / (2V).
+  const double V = 2.0 / 40 - (2.0 / 40) * (2.0 / 40);
+  EXPECT_NEAR(s.ST[1], (1.0 / 20) / (2 * V), 1e-12);
+  EXPECT_NEAR(s.ST[0], 0.0, 1e-12);
 }
 
 TEST(GsaSobol, RejectsOutputsThatAreNotWholeBlocks) {

@@ -18,7 +18,8 @@ namespace {
 // below syn.cpg_in.V_h) spent in ground contact (beta below the PR threshold), counted on the
 // 1 ms output grid instead of from located events: `sampled["<leg>"]`.
 std::map<std::string, double> walk(const std::string& config, const std::vector<std::string>& sets = {},
-                                   size_t* n_states = nullptr, std::map<std::string, double>* sampled = nullptr) {
+                                   size_t* n_states = nullptr, std::map<std::string, double>* sampled = nullptr,
+                                   double discard_ms = 2500) {
   auto cfg = config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/" + config);
   auto m = config::build_model(cfg, sets);
   if (n_states) *n_states = m->num_states();
@@ -26,7 +27,7 @@ std::map<std::string, double> walk(const std::string& config, const std::vector<
   solver::Simulator sim(*m, s.solver);
   auto r = sim.run(m->parameters().values(), solver::output_grid(4500, sampled ? 1.0 : 5.0), features::feature_roots(*m));
   features::FeatureOptions fo;
-  fo.discard_ms = 2500;
+  fo.discard_ms = discard_ms;
   std::map<std::string, double> f;
   for (auto& x : features::compute_features(*m, r, fo)) f[x.name] = x.value;
   if (sampled) {
@@ -69,6 +70,9 @@ TEST(ThreeLegs, TetrapodPeriodAndMetachronalLags) {
   EXPECT_LT(cdist(f["phase_lag.hind_to_middle"], 1.0 / 3), 0.07);
   EXPECT_LT(cdist(f["phase_lag.middle_to_front"], 1.0 / 3), 0.07);
   EXPECT_EQ(f["gait_class"], 1.0);
+  EXPECT_EQ(f["oscillates"], 1.0);
+  EXPECT_EQ(f["is_tetrapod"], 1.0);
+  EXPECT_EQ(f["is_tripod"], 0.0);
   // Fig. 3.20 A (weak inhibition): the retractor CPG is active through the stance and the
   // protraction falls into the swing (front, middle; measured 0.98 / 0.99 and 0.015 / 0.012).
   // The hind leg, with its longer stance (duty 0.61), starts protracting slightly before
@@ -93,6 +97,19 @@ TEST(ThreeLegs, TripodPeriodFrontHindInPhaseMiddleAntiphase) {
   EXPECT_LT(cdist(f["phase_lag.hind_to_front"], 0.0), 0.05);   // front and hind in phase
   EXPECT_LT(cdist(f["phase_lag.hind_to_middle"], 0.5), 0.1);   // middle in antiphase
   EXPECT_EQ(f["gait_class"], 2.0);
+  EXPECT_EQ(f["is_tripod"], 1.0);
+  EXPECT_EQ(f["is_tetrapod"], 0.0);
+}
+
+// The derived 0/1 features exist where the others are omitted: over a window shorter than a
+// step (the last 150 ms of 4500, period 442 ms) there is no period and no gait.
+TEST(ThreeLegs, DerivedIndicatorsAreZeroWithoutARhythmInTheWindow) {
+  auto f = walk("three_legs_tripod.toml", {}, nullptr, nullptr, 4350);
+  EXPECT_EQ(f.count("period_ms"), 0u);
+  EXPECT_EQ(f.count("gait_class"), 0u);
+  EXPECT_EQ(f.at("oscillates"), 0.0);
+  EXPECT_EQ(f.at("is_tripod"), 0.0);
+  EXPECT_EQ(f.at("is_tetrapod"), 0.0);
 }
 
 namespace {

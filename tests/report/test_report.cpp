@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "common/error.hpp"
+#include "gsa/gsa_h5.hpp"
 #include "report/report.hpp"
 #include "report_fixtures.hpp"
 #include "build_info.hpp"
@@ -446,4 +447,49 @@ TEST(ReportRender, DetectsScriptErrors) {
   Page p = load(html);
   EXPECT_EQ(p.attr("data-status"), "error");
   EXPECT_FALSE(p.console_errors().empty()) << p.log;
+}
+
+// ------------------------------------------------------------------ global sensitivity analysis
+namespace {
+// A small `phasmid gsa` run of the registered Ishigami kind (Sobol' N = 64, or Morris r = 16).
+fs::path gsa_file(const std::string& method) {
+  fs::path cfg = work_dir() / ("gsa_" + method + ".toml"), h5 = work_dir() / ("gsa_" + method + ".h5");
+  std::ofstream c(cfg);
+  c << "[model]\ntype = \"ishigami\"\n";
+  for (const char* x : {"x1", "x2", "x3"}) c << "[[sweep.parameter]]\nname = \"" << x << "\"\nlower = -3.14159\nupper = 3.14159\n";
+  c << "[gsa]\nmethod = \"" << method << "\"\nfeatures = [\"y\"]\nbootstrap = 100\n"
+    << (method == "sobol" ? "N = 64\n" : "trajectories = 16\nlevels = 4\n");
+  c.close();
+  Result r = run(q(PHASMID_BINARY) + " gsa " + q(cfg.string()) + " -q -o " + q(h5.string()) + " 2>&1");
+  EXPECT_EQ(r.code, 0) << r.out;
+  return h5;
+}
+}  // namespace
+
+TEST(ReportUnits, ExtractGsaReadsTheStoredIndices) {
+  const fs::path h5 = gsa_file("sobol");
+  const auto j = phasmid::report::extract(h5.string());
+  const auto stored = phasmid::gsa::read_gsa_h5(phasmid::io::H5Reader(h5.string()));
+  const auto& g = j.at("gsa");
+  EXPECT_EQ(g.at("method"), "sobol");
+  EXPECT_EQ(g.at("N"), 64);
+  EXPECT_EQ(g.at("rows"), 64 * 8);
+  const auto& y = g.at("features").at(0);
+  EXPECT_EQ(y.at("name"), "y");
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(y.at("ST").at(k).get<double>(), stored.features[0].sobol.ST[k]);
+    EXPECT_EQ(y.at("S1_conf").at(k).get<double>(), stored.features[0].sobol.S1_conf[k]);
+  }
+  EXPECT_EQ(y.at("convergence").at("n"), (std::vector<int>{8, 16, 32, 64}));
+  EXPECT_EQ(y.at("counts").at("n_used"), 64);
+}
+
+TEST(ReportRender, GsaSobol) {
+  expect_renders("gsa_sobol", gsa_file("sobol"), {"table-gsa-counts", "fig-gsa-heatmap", "fig-gsa-y", "fig-gsa-conv-y"},
+                 {"fig-gsa-plane-y"});
+}
+
+TEST(ReportRender, GsaMorris) {
+  expect_renders("gsa_morris", gsa_file("morris"), {"table-gsa-counts", "fig-gsa-y", "fig-gsa-plane-y", "fig-gsa-conv-y"},
+                 {"fig-gsa-heatmap"});
 }

@@ -1,0 +1,104 @@
+// [mpirun -np N] phasmid gsa CONFIG [-o OUT.h5] [--resume] [--set NAME=VALUE ...] [-j THREADS] [-q]
+// Global sensitivity analysis (docs/gsa.md): the [gsa] design over the [[sweep.parameter]]
+// ranges runs as a sweep (threads, MPI ranks, journal and --resume as `phasmid sweep`), then
+// the analysis reads the finished sweep file and adds /gsa to it.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+
+#include "app/options.hpp"
+#include "app/verb.hpp"
+#include "config/gsa_inputs.hpp"
+#include "dist/executor.hpp"
+#include "dist/session.hpp"
+#include "sweep/sweep_runner.hpp"
+
+namespace phasmid::app {
+namespace {
+struct GsaArgs {
+  std::string config, out = "gsa.h5";
+  std::vector<std::string> sets;
+  bool resume = false, quiet = false;
+  int threads = 0;
+  long stop_after = -1;
+};
+
+std::string pm(double v, double conf) { return fmt::format("{:>8.4f} ± {:<7.4f}", v, conf); }
+
+// Per feature: the failed-point counts and the indices with their interval half-widths.
+void print_result(const gsa::GsaResult& r) {
+  const bool sobol = r.method == "sobol";
+  const double level = 100 * r.bootstrap.confidence;
+  for (const gsa::FeatureResult& f : r.features) {
+    const gsa::OutputCounts& c = sobol ? f.sobol.counts : f.morris.counts;
+    std::cout << fmt::format("{} ({}): {} of {} {} used ({} non-finite outputs, {} dropped)\n", f.name,
+                             f.unit.empty() ? "-" : f.unit, c.n_used, c.n_used + c.n_dropped,
+                             sobol ? "base rows" : "trajectories", c.n_nonfinite, c.n_dropped);
+    if (sobol && c.n_used >= 2 && !(f.sobol.variance > 0)) {
+      std::cout << "  no variance over the A and B rows (constant there): indices undefined (NaN)\n";
+      continue;
+    }
+    if (sobol) std::cout << fmt::format("  {:<28} {:>19} {:>19}   ({:g} % intervals)\n", "parameter", "S1", "ST", level);
+    else std::cout << fmt::format("  {:<28} {:>19} {:>10} {:>10}   ({:g} % intervals)\n", "parameter", "mu*", "mu", "sigma", level);
+    for (std::size_t j = 0; j < r.parameters.size(); ++j) {
+      const std::string& name = r.parameters[j].name;
+      if (sobol) std::cout << fmt::format("  {:<28} {} {}\n", name, pm(f.sobol.S1[j], f.sobol.S1_conf[j]), pm(f.sobol.ST[j], f.sobol.ST_conf[j]));
+      else std::cout << fmt::format("  {:<28} {} {:>10.4g} {:>10.4g}\n", name, pm(f.morris.mu_star[j], f.morris.mu_star_conf[j]), f.morris.mu[j], f.morris.sigma[j]);
+    }
+  }
+}
+
+// A finished sweep of this analysis is in OUT already (the run stopped before or during the
+// analysis step, or the analysis is repeated): --resume then only analyses.
+bool sweep_already_done(const GsaArgs& a) {
+  namespace fs = std::filesystem;
+  if (!a.resume || fs::exists(sweep::Journal::path_for(a.out)) || !fs::exists(a.out)) return false;
+  return io::H5Reader(a.out).exists("/sweep/points");
+}
+
+int run(const GsaArgs& a) {
+  const config::GsaInputs in = config::gsa_inputs(config::load_config(a.config), a.sets);
+  if (!sweep_already_done(a)) {
+    sweep::SweepOptions o;
+    o.output = a.out, o.resume = a.resume, o.threads = a.threads, o.stop_after = a.stop_after;
+    o.progress = !a.quiet, o.handle_signals = true, o.command = command_line();
+    const sweep::SweepOutcome s = sweep::run_sweep(in.sweep, o);
+    if (s.worker) return 0;  // MPI worker rank: rank 0 analyses
+    if (!s.complete) {
+      std::cerr << "phasmid gsa: " << (s.signal ? "interrupted" : "stopped") << " with " << (s.n_recovered + s.n_computed)
+                << " of " << s.n_points << " design points done (kept in " << s.journal << "); continue with: "
+                << (s.distributed ? "mpirun ... " : "") << "phasmid gsa " << a.config << " -o " << a.out << " --resume\n";
+      return s.signal ? 128 + s.signal : 3;
+    }
+    if (!a.quiet)
+      std::cerr << "phasmid gsa: " << s.n_points << " design points (" << s.n_failed << " failed, " << s.n_recovered
+                << " resumed) on " << s.executor << " in " << s.wall_seconds << " s\n";
+  } else if (dist::rank() != 0) {
+    return 0;
+  }
+  const gsa::GsaResult result = config::analyse_and_write(in, a.out, command_line());
+  if (!a.quiet) {
+    print_result(result);
+    std::cerr << "phasmid gsa: " << result.method << " analysis of " << result.features.size() << " features -> " << a.out << "\n";
+  }
+  return 0;
+}
+
+const RegisterVerb reg{{"gsa", "Run a global sensitivity analysis ([gsa] section): Sobol' indices or Morris screening, on the sweep engine",
+                        [](CLI::App& sub) {
+                          auto a = std::make_shared<GsaArgs>();
+                          add_config_arg(sub, a->config, "scenario config (TOML) with [gsa] and [[sweep.parameter]] ranges");
+                          add_output(sub, a->out, "gsa.h5");
+                          sub.add_flag("--resume", a->resume,
+                                       "continue an interrupted analysis from OUT.h5.journal (or re-analyse a finished OUT.h5)");
+                          add_sets(sub, a->sets);
+                          add_threads(sub, a->threads);
+                          sub.add_option("--stop-after", a->stop_after,
+                                         "testing: stop as if interrupted after computing K design points")
+                              ->check(CLI::NonNegativeNumber);
+                          add_quiet(sub, a->quiet);
+                          return std::function<int()>([a] { return run(*a); });
+                        }}};
+}  // namespace
+}  // namespace phasmid::app

@@ -1,0 +1,104 @@
+#include "config/gsa_section.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "common/error.hpp"
+
+namespace phasmid::config {
+namespace {
+
+constexpr std::int64_t kMaxCount = 10'000'000;
+
+std::size_t count(const Config& cfg, const toml::node& n, const std::string& key, std::int64_t min) {
+  auto v = n.value_exact<std::int64_t>();
+  if (!v || *v < min || *v > kMaxCount)
+    throw Error(where(cfg, n) + ": [gsa] " + key + " must be an integer in [" + std::to_string(min) + ", " +
+                std::to_string(kMaxCount) + "]");
+  return static_cast<std::size_t>(*v);
+}
+
+std::vector<std::string> feature_names(const Config& cfg, const toml::node& n,
+                                       const std::vector<features::FeatureInfo>& catalogue) {
+  const toml::array* a = n.as_array();
+  if (!a || a->empty()) throw Error(where(cfg, n) + ": [gsa] features must be a non-empty list of feature names");
+  std::vector<std::string> known, out;
+  for (const auto& f : catalogue) known.push_back(f.name);
+  std::set<std::string> seen;
+  for (const toml::node& e : *a) {
+    const std::string name = text(cfg, e, "features");
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      const std::string near = nearest(name, known);
+      throw Error(where(cfg, e) + ": [gsa] unknown feature '" + name + "'" +
+                  (near.empty() ? "" : " (did you mean '" + near + "'?)") + "; `phasmid features CONFIG` lists them");
+    }
+    if (!seen.insert(name).second) throw Error(where(cfg, e) + ": [gsa] feature '" + name + "' listed twice");
+    out.push_back(name);
+  }
+  return out;
+}
+
+void parse_sobol_key(const Config& cfg, const std::string& key, const toml::node& n, gsa::SaltelliOptions& o) {
+  if (key == "N") o.n_base = count(cfg, n, key, 2);
+  else if (key == "second_order") o.second_order = boolean(cfg, n, key);
+  else if (key == "scramble") o.scramble = boolean(cfg, n, key);
+  else if (key == "skip") o.skip = count(cfg, n, key, 0);
+}
+
+void parse_morris_key(const Config& cfg, const std::string& key, const toml::node& n, gsa::MorrisOptions& o) {
+  if (key == "trajectories") o.trajectories = count(cfg, n, key, 2);
+  else if (key == "pool") o.pool = count(cfg, n, key, 0);
+  else if (key == "levels") {
+    o.levels = static_cast<int>(count(cfg, n, key, 2));
+    if (o.levels % 2) throw Error(where(cfg, n) + ": [gsa] levels must be even (Morris' grid with step p/(2(p-1)))");
+  }
+}
+
+void check_pool(const Config& cfg, const toml::table& t, const gsa::MorrisOptions& o) {
+  if (o.pool != 0 && o.pool <= o.trajectories)
+    throw Error(where(cfg, *t.get("pool")) + ": [gsa] pool (" + std::to_string(o.pool) +
+                ") must exceed trajectories (" + std::to_string(o.trajectories) + "), or be 0 for no selection");
+}
+
+}  // namespace
+
+gsa::GsaSpec parse_gsa_section(const Config& cfg, const std::vector<features::FeatureInfo>& catalogue) {
+  const toml::node* gn = cfg.table.get("gsa");
+  if (!gn) throw Error(cfg.path + ": missing [gsa] section (docs/gsa.md)");
+  const toml::table* t = gn->as_table();
+  if (!t) throw Error(where(cfg, *gn) + ": 'gsa' must be a table ([gsa])");
+  gsa::GsaSpec spec;
+  spec.bootstrap.seed = 1;
+  if (const toml::node* m = t->get("method")) {
+    spec.method = text(cfg, *m, "method");
+    if (spec.method != "sobol" && spec.method != "morris")
+      throw Error(where(cfg, *m) + ": [gsa] method must be \"sobol\" or \"morris\"");
+  }
+  const bool sobol = spec.method == "sobol";
+  std::set<std::string> keys = {"method", "features", "seed", "bootstrap", "confidence"};
+  if (sobol) keys.insert({"N", "second_order", "scramble", "skip"});
+  else keys.insert({"trajectories", "levels", "pool"});
+  check_keys(cfg, *t, "gsa (method = \"" + spec.method + "\")", keys);
+  const toml::node* fn = t->get("features");
+  if (!fn) throw Error(where(cfg, *gn) + ": [gsa] needs features = [\"<feature>\", ...] (`phasmid features CONFIG`)");
+  spec.features = feature_names(cfg, *fn, catalogue);
+  for (auto&& [k, node] : *t) {
+    const std::string key(k.str());
+    if (key == "seed") {
+      spec.saltelli.seed = spec.morris.seed = count(cfg, node, key, 0);
+      spec.bootstrap.seed = spec.saltelli.seed + 1;  // its own stream, not the design's
+    }
+    else if (key == "bootstrap") spec.bootstrap.resamples = count(cfg, node, key, 0);
+    else if (key == "confidence") {
+      spec.bootstrap.confidence = number(cfg, node, key);
+      if (!(spec.bootstrap.confidence > 0 && spec.bootstrap.confidence < 1))
+        throw Error(where(cfg, node) + ": [gsa] confidence must lie in (0, 1), e.g. 0.95");
+    } else if (sobol) parse_sobol_key(cfg, key, node, spec.saltelli);
+    else parse_morris_key(cfg, key, node, spec.morris);
+  }
+  if (!sobol) check_pool(cfg, *t, spec.morris);
+  return spec;
+}
+
+}  // namespace phasmid::config
