@@ -10,6 +10,7 @@ PACKAGES=(
   libtomlplusplus-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev fonts-liberation
   libopenmpi-dev openmpi-bin hdf5-tools
+  python3-h5py  # the adversarial corpus crafts damaged HDF5 inputs with it (tests/adversarial)
 )
 # Report tests render the HTML reports in a real browser.
 if [ "${PHASMID_WITH_BROWSER:-1}" = 1 ]; then PACKAGES+=(chromium); fi
