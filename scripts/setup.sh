@@ -10,7 +10,8 @@ PACKAGES=(
   libtomlplusplus-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev fonts-liberation
   libopenmpi-dev openmpi-bin hdf5-tools
-  python3-h5py  # the adversarial corpus crafts damaged HDF5 inputs with it (tests/adversarial)
+  python3-dev pybind11-dev python3-numpy python3-h5py python3-pytest python3-nbclient python3-ipykernel
+  python3-matplotlib
 )
 # Report tests render the HTML reports in a real browser.
 if [ "${PHASMID_WITH_BROWSER:-1}" = 1 ]; then PACKAGES+=(chromium); fi
@@ -28,3 +29,17 @@ fi
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j"$(nproc)"
+
+# The Python module (docs/python.md): a .pth file in Debian's Python's site-packages points
+# at build/python, so `/usr/bin/python3 -c "import phasmid"` imports this build (and every
+# rebuild) from anywhere; delete that one file to uninstall.
+if ls build/python/phasmid/_core*.so >/dev/null 2>&1; then
+  site=$(/usr/bin/python3 -c 'import site; print(site.getsitepackages()[0])')
+  pth="$site/phasmid.pth"
+  if [ "$(cat "$pth" 2>/dev/null)" != "$PWD/build/python" ]; then
+    SUDO=""; [ "$(id -u)" = 0 ] || SUDO=sudo
+    $SUDO mkdir -p "$site"
+    echo "$PWD/build/python" | $SUDO tee "$pth" >/dev/null
+    echo "phasmid setup: $pth -> $PWD/build/python (import phasmid)" >&2
+  fi
+fi

@@ -31,6 +31,7 @@ class OdeRun : public ScenarioRun {
     for (const auto& c : result_.commands) p_[c.parameter] = c.t_ms;
   }
   const std::vector<features::Feature>& features() const override { return features_; }
+  const solver::SolveResult* solution() const override { return &result_; }
   void write(io::H5Writer& out) const override {
     io::write_trajectory(out, model_, result_);
     io::write_parameters(out, model_, p_);

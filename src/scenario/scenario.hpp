@@ -58,6 +58,9 @@ class ScenarioRun {
   virtual std::vector<std::string> notes() const { return {}; }
   // One line: what was run and how long it took ("26 states, 9000 ms in 0.71 s").
   virtual std::string summary() const = 0;
+  // The integrated trajectory of kinds that are one ODE system (nullptr for others), for
+  // callers that hand its arrays on without copying (the Python module, docs/python.md).
+  virtual const solver::SolveResult* solution() const { return nullptr; }
 };
 
 class Scenario {

@@ -4,6 +4,8 @@
 
 #include <cstdio>
 
+#include "solver/interrupt.hpp"
+
 namespace phasmid::solver {
 
 ProgressLine::ProgressLine(const SolverOptions& options, double t_end, size_t parts)
@@ -14,6 +16,7 @@ ProgressLine::ProgressLine(const SolverOptions& options, double t_end, size_t pa
       last_print_(std::chrono::steady_clock::now()) {}
 
 void ProgressLine::update(double t) {
+  if (interrupt_requested()) throw Interrupted("interrupted at t = " + std::to_string(t) + " ms");
   if (!show_) return;
   const auto now = std::chrono::steady_clock::now();
   if (now - last_print_ <= std::chrono::milliseconds(200)) return;

@@ -1,0 +1,388 @@
+"""Result objects of phasmid runs and files (docs/python.md)."""
+import os
+import shutil
+import tempfile
+from collections import namedtuple
+
+import numpy as np
+
+from . import _core
+
+Parameter = namedtuple("Parameter", "name value unit source description lower upper")
+Parameter.__doc__ = ("One model parameter: name, value, unit, cited source, one-line description and "
+                     "admissible range [lower, upper].")
+Feature = namedtuple("Feature", "name value unit")
+Feature.__doc__ = "One gait feature: name, value and unit (docs/features.md)."
+Event = namedtuple("Event", "t_ms state direction")
+Event.__doc__ = ("A located event of a run: time (ms), the state whose root was crossed (features: an "
+                 "angular velocity crossing zero, a leg angle crossing its contact threshold) and the "
+                 "direction (+1 rising, -1 falling).")
+
+
+class Parameters(list):
+    """The parameters of a scenario, in the model's order: a list of Parameter records that can
+    also be indexed by name (``params["middle.fti.k_E.flexion"].value``)."""
+
+    def __getitem__(self, key):
+        if isinstance(key, str):
+            for p in self:
+                if p.name == key:
+                    return p
+            raise KeyError(key)
+        return list.__getitem__(self, key)
+
+    @property
+    def names(self):
+        """Parameter names, in order."""
+        return [p.name for p in self]
+
+    @property
+    def values(self):
+        """Parameter values as a NumPy array, in order."""
+        return np.array([p.value for p in self])
+
+    def as_dict(self):
+        """{name: value}."""
+        return {p.name: p.value for p in self}
+
+
+class Features(dict):
+    """Gait features as {name: value}; ``.units[name]`` is the unit and ``.records`` the list
+    of Feature(name, value, unit) in the order the run reported them."""
+
+    def __init__(self, records):
+        records = [Feature(*r) for r in records]
+        super().__init__((r.name, r.value) for r in records)
+        self.records = records
+        self.units = {r.name: r.unit for r in records}
+
+
+def _load_h5(path):
+    """Every dataset of a phasmid HDF5 file as {"/group/name": array or str list} and every
+    attribute as {"/group": {name: value}}."""
+    import h5py
+
+    data, attrs = {}, {}
+
+    def convert(v):
+        if isinstance(v, bytes):
+            return v.decode()
+        if isinstance(v, np.ndarray) and v.dtype.kind in "OS":
+            return [x.decode() if isinstance(x, bytes) else x for x in v.tolist()]
+        return v
+
+    def visit(name, obj):
+        key = "/" + name
+        if obj.attrs:
+            attrs[key] = {k: convert(v) for k, v in obj.attrs.items()}
+        if isinstance(obj, h5py.Dataset):
+            data[key] = convert(obj[()])
+
+    with h5py.File(path, "r") as f:
+        attrs["/"] = {k: convert(v) for k, v in f.attrs.items()}
+        f.visititems(visit)
+    return data, attrs
+
+
+class Result:
+    """Base of every phasmid result: ``.save(path)`` writes the HDF5 file the CLI writes for the
+    same run, ``.report(path)`` the HTML report ``phasmid report`` makes of it; ``model`` and
+    ``config`` are the file's root attributes (the model kind, the resolved config text)."""
+
+    attrs = {}
+
+    @property
+    def config(self):
+        """The resolved config text (config plus overrides) the result was made from."""
+        return self.attrs.get("/", {}).get("config")
+
+    @property
+    def model(self):
+        """The model kind that produced the result (None where a file does not record one)."""
+        return self.attrs.get("/", {}).get("model")
+
+    _made = None  # the C++ result of a run made here (it writes its own file)
+    _file = None  # the FileResult of a file read back
+
+    def save(self, path):
+        """Write the result as the phasmid HDF5 file (docs/hdf5.md) the CLI writes for the same
+        run, through the same C++ writer; returns `path`."""
+        if self._made is not None:
+            self._made.save(os.fspath(path))
+        else:
+            self._file.save(path)
+        return path
+
+    def report(self, path):
+        """Write the self-contained HTML report of this result to `path`; returns `path`."""
+        with tempfile.TemporaryDirectory(prefix="phasmid-") as d:
+            h5 = os.path.join(d, "result.h5")
+            self.save(h5)
+            _core.write_report(h5, os.fspath(path))
+        return path
+
+
+class FileResult(Result):
+    """A result carried by the HDF5 file the C++ core wrote (fits, sweeps, files read back).
+
+    ``data`` maps dataset paths ("/fit/estimate") to NumPy arrays (lists for strings),
+    ``attrs`` maps object paths ("/", "/trajectory") to their attributes; ``model`` is the root
+    attribute `model` where the file has one, ``config`` the resolved config text."""
+
+    def __init__(self, path):
+        path = os.fspath(path)
+        with open(path, "rb") as f:
+            self._bytes = f.read()
+        self.data, self.attrs = _load_h5(path)
+
+    def group(self, prefix):
+        """{name below prefix: array} for every dataset under `prefix` ("/features")."""
+        prefix = prefix.rstrip("/") + "/"
+        return {k[len(prefix):]: v for k, v in self.data.items() if k.startswith(prefix)}
+
+    def save(self, path):
+        """Write the file as the C++ core wrote it (byte for byte); returns `path`."""
+        with open(path, "wb") as f:
+            f.write(self._bytes)
+        return path
+
+    @property
+    def features(self):
+        """Features of the file's /features group as Features (name -> value, .units)."""
+        units = {k: (self.attrs.get("/features/" + k) or {}).get("units", "")
+                 for k in self.group("/features")}
+        def scalar(v):
+            v = np.asarray(v).reshape(-1)
+            return float(v[0]) if v.dtype.kind in "fiu" else (v[0] if v.size == 1 else v.tolist())
+
+        return Features([(k, scalar(v), units[k]) for k, v in self.group("/features").items()])
+
+    def __repr__(self):
+        return "<phasmid.%s: %d datasets>" % (type(self).__name__, len(self.data))
+
+
+def _nested_angles(flat):
+    out = {}
+    for key, arr in flat.items():
+        leg, joint = key.rsplit(".", 1) if "." in key else key.split("/", 1)
+        out.setdefault(leg, {})[joint] = arr
+    return out
+
+
+class SimulationResult(Result):
+    """One run of a scenario (Scenario.simulate, or a simulate file read back).
+
+    ``time`` (ms), ``angles[leg][joint]`` (deg), ``angular_velocity[leg][joint]`` (deg/s) and
+    ``states[name]`` (unit in ``state_units[name]``) are NumPy arrays; for a run made here
+    they are read-only views of the C++ result (``y`` is the whole times x states matrix).
+    ``features`` is a Features dict, ``events`` a list of Event records."""
+
+    def __init__(self, sim=None, file=None, attrs=None):
+        self._made, self._file = sim, file
+        self.attrs = attrs or {}
+        if sim is not None and sim.has_solution:
+            return  # attributes are made on first access (__getattr__): a loop of runs pays for what it reads
+        if sim is not None:  # a kind without an ODE trajectory: what its file holds
+            with tempfile.TemporaryDirectory(prefix="phasmid-") as d:
+                sim.save(os.path.join(d, "run.h5"))
+                file = FileResult(os.path.join(d, "run.h5"))
+            self._file = file
+            self.notes, self.summary = sim.notes(), sim.summary()
+        self._from_file(file)
+        if sim is not None:
+            self.features = Features(sim.feature_records())
+
+    def __getattr__(self, name):
+        sim = self.__dict__.get("_made")
+        make = _SIMULATION_ATTRIBUTES.get(name)
+        if make is None or sim is None or not sim.has_solution:
+            raise AttributeError(name)
+        value = make(self, sim)
+        setattr(self, name, value)
+        return value
+
+    def __dir__(self):
+        return sorted(set(super().__dir__()) | set(_SIMULATION_ATTRIBUTES))
+
+    def _from_file(self, f):
+        self.time = f.data.get("/trajectory/time")
+        self.states = f.group("/trajectory/states")
+        self.state_units = {k: f.attrs.get("/trajectory/states/" + k, {}).get("units", "") for k in self.states}
+        self.angles = _group_tree(f.group("/trajectory/angles"))
+        self.angular_velocity = _group_tree(f.group("/trajectory/angular_velocity"))
+        self.features = f.features
+        self.events = []
+        self.data = f.data
+        self.attrs = f.attrs
+        self.notes, self.summary = getattr(self, "notes", []), getattr(self, "summary", "")
+
+    def angle(self, name):
+        """The angle "<leg>.<joint>" (deg)."""
+        leg, joint = name.rsplit(".", 1)
+        return self.angles[leg][joint]
+
+    def __repr__(self):
+        return "<phasmid.SimulationResult: %s>" % (self.summary or "%d times" % len(self.time))
+
+
+def _degrees(sim, prefix):
+    return _nested_angles({n[len(prefix):]: sim.degrees(n) for n in sim.degree_names() if n.startswith(prefix)})
+
+
+def _events(sim):
+    names, roots = sim.state_names, sim.root_states()
+    return [Event(t, names[roots[root]], d) for t, root, d in sim.event_records()]
+
+
+# How each attribute of a SimulationResult run here is made from the C++ Simulation.
+_SIMULATION_ATTRIBUTES = {
+    "time": lambda r, sim: sim.time,
+    "y": lambda r, sim: sim.y,
+    "states": lambda r, sim: {n: r.y[:, i] for i, n in enumerate(sim.state_names)},
+    "state_units": lambda r, sim: dict(zip(sim.state_names, sim.state_units)),
+    "angles": lambda r, sim: _degrees(sim, "angles/"),
+    "angular_velocity": lambda r, sim: _degrees(sim, "angular_velocity/"),
+    "features": lambda r, sim: Features(sim.feature_records()),
+    "events": lambda r, sim: _events(sim),
+    "notes": lambda r, sim: sim.notes(),
+    "summary": lambda r, sim: sim.summary(),
+}
+
+
+def _group_tree(flat):
+    out = {}
+    for key, arr in flat.items():
+        leg, _, joint = key.partition("/")
+        out.setdefault(leg, {})[joint] = arr
+    return out
+
+
+class SensitivityResult(Result):
+    """Forward sensitivities (Scenario.sensitivity, or a sensitivity file read back).
+
+    ``absolute`` and ``relative`` are features x parameters arrays (axes labelled by
+    ``feature_names`` and ``parameters``: ``axes["absolute"] == ("feature", "parameter")``);
+    ``trajectory`` is times x states x parameters (labels ``time``, ``state_names``,
+    ``parameters``), None when trajectory=False. For a run made here they are views of the
+    C++ report. ``features`` holds the nominal feature values, ``ranking[feature]`` the
+    parameters by |relative| sensitivity."""
+
+    axes = {"absolute": ("feature", "parameter"), "relative": ("feature", "parameter"),
+            "trajectory": ("time", "state", "parameter"), "states": ("time", "state")}
+
+    def __init__(self, sens=None, file=None, attrs=None):
+        self._made, self._file = sens, file
+        self.attrs = attrs or {}
+        if sens is not None:
+            self.parameters = sens.parameters
+            self.parameter_units = sens.parameter_units
+            self.parameter_values = np.array(sens.parameter_values)
+            self.features = Features(sens.feature_records())
+            self.feature_names = [r.name for r in self.features.records]
+            self.absolute, self.relative = sens.absolute, sens.relative
+            self.time, self.trajectory, self.states = sens.time, sens.trajectory, sens.states
+            self.state_names, self.state_units = sens.state_names, sens.state_units
+            self.ranking = dict(zip(self.feature_names, sens.ranking))
+            self.method, self.summary = sens.method, sens.summary()
+        else:
+            self._from_file(file)
+
+    def _from_file(self, f):
+        d = f.data
+        self.parameters = d["/sensitivity/parameters"]
+        self.parameter_units = d.get("/sensitivity/parameter_units", [])
+        self.parameter_values = d.get("/sensitivity/parameter_values")
+        self.feature_names = d.get("/sensitivity/feature_names") or list(f.group("/sensitivity/features"))
+        self.features = Features(zip(self.feature_names, np.asarray(d["/sensitivity/feature_values"]).tolist(),
+                                     d["/sensitivity/feature_units"])) if "/sensitivity/feature_values" in d else f.features
+        self.absolute = np.array([f.data["/sensitivity/features/" + n] for n in self.feature_names]).reshape(
+            len(self.feature_names), len(self.parameters))
+        self.relative = np.array([f.data["/sensitivity/relative/" + n] for n in self.feature_names]).reshape(
+            len(self.feature_names), len(self.parameters))
+        self.ranking = {n: f.data.get("/sensitivity/ranking/" + n) for n in self.feature_names}
+        self.time = d.get("/sensitivity/time")
+        self.trajectory = d.get("/sensitivity/trajectory")
+        self.state_names = d.get("/sensitivity/state_names", [])
+        self.state_units = d.get("/sensitivity/state_units", [])
+        self.states = None
+        self.method = (f.attrs.get("/sensitivity") or {}).get("method")
+        self.summary = ""
+        self.data, self.attrs = f.data, f.attrs
+
+    def d(self, feature, parameter, relative=False):
+        """dF/dp of `feature` by `parameter` (or p/F dF/dp with relative=True)."""
+        a = self.relative if relative else self.absolute
+        return float(a[self.feature_names.index(feature), self.parameters.index(parameter)])
+
+
+class FitResult(FileResult):
+    """A fit (phasmid.fit, or a fit file read back): everything of the file's /fit group in
+    ``data``; ``estimates`` {name: value}, ``standard_errors`` {name: value}, ``units``,
+    ``final_cost``, ``converged`` (best start), ``summary`` (the text `phasmid fit` prints)."""
+
+    def __init__(self, path, outcome=None):
+        super().__init__(path)
+        names = self.data["/fit/parameter_names"]
+        self.parameter_names = names
+        self.estimates = dict(zip(names, self.data["/fit/estimate"].tolist()))
+        self.standard_errors = dict(zip(names, self.data["/fit/standard_error"].tolist()))
+        self.units = dict(zip(names, self.data["/fit/parameter_units"]))
+        self.final_cost = float(self.data["/fit/final_cost"])
+        self.cost_history = self.data["/fit/cost_history"]
+        conv = self.data.get("/fit/multistart/converged")
+        best = (self.attrs.get("/fit/multistart") or {}).get("best", 0)
+        self.converged = bool(outcome["converged"]) if outcome else (bool(conv[int(best)]) if conv is not None else None)
+        summary = self.data.get("/fit/summary")
+        self.summary = outcome["summary"] if outcome else (summary if isinstance(summary, str) else "")
+
+    def __repr__(self):
+        return "<phasmid.FitResult: %s, cost %g>" % (
+            ", ".join("%s=%.6g" % kv for kv in self.estimates.items()), self.final_cost)
+
+
+class SweepResult(FileResult):
+    """A sweep (phasmid.sweep, or a sweep file read back): ``parameter_names``, ``points``
+    (points x parameters), ``features`` {name: array over points}, ``status`` and
+    ``gait_class`` per point, everything else of /sweep in ``data``."""
+
+    def __init__(self, path, outcome=None):
+        super().__init__(path)
+        self.parameter_names = self.data["/sweep/parameter_names"]
+        self.parameter_units = self.data.get("/sweep/parameter_units", [])
+        self.points = self.data["/sweep/points"].reshape(-1, len(self.parameter_names))
+        self._features = self.group("/sweep/features")
+        self.status = self.data.get("/sweep/status")
+        self.gait_class = self.data.get("/sweep/gait_class")
+        self.outcome = outcome or {}
+
+    @property
+    def features(self):
+        """{feature name: array over the points} (NaN where a point failed)."""
+        return self._features
+
+    def __repr__(self):
+        return "<phasmid.SweepResult: %d points x %d parameters, %d features>" % (
+            self.points.shape[0], self.points.shape[1], len(self.features))
+
+
+class GsaResult(FileResult):
+    """A global sensitivity analysis file (/gsa, docs/gsa.md) read back: everything in ``data``."""
+
+
+def read(path):
+    """Load any phasmid HDF5 file into the result object of the verb that wrote it:
+    SensitivityResult (/sensitivity), FitResult (/fit), SweepResult (/sweep), GsaResult (/gsa),
+    SimulationResult (/trajectory), else a FileResult."""
+    f = FileResult(path)
+    keys = f.data.keys()
+    if any(k.startswith("/sensitivity/") for k in keys):
+        return SensitivityResult(file=f)
+    if "/fit/parameter_names" in keys:
+        return FitResult(path)
+    if "/sweep/parameter_names" in keys:
+        return SweepResult(path)
+    if any(k.startswith("/gsa/") for k in keys):
+        return GsaResult(path)
+    if "/trajectory/time" in keys:
+        return SimulationResult(file=f)
+    return f

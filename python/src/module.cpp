@@ -1,0 +1,103 @@
+// phasmid._core: the C++ half of the phasmid Python module (bindings.hpp, docs/python.md).
+#include <signal.h>
+
+#include <mutex>
+
+#include "bindings.hpp"
+#include "build_info.hpp"
+#include "report/report.hpp"
+#include "solver/interrupt.hpp"
+
+namespace phasmid::app {
+// write_output.cpp records the command line; from Python there is none.
+const std::string& command_line() {
+  static const std::string text = phasmid::python::command_text();
+  return text;
+}
+}  // namespace phasmid::app
+
+namespace phasmid::python {
+namespace {
+std::mutex g_guard_mutex;
+int g_guards = 0;
+struct sigaction g_python_handler;
+
+extern "C" void on_sigint(int) { solver::request_interrupt(); }
+}  // namespace
+
+InterruptGuard::InterruptGuard() {
+  std::lock_guard<std::mutex> lock(g_guard_mutex);
+  if (g_guards++ > 0) return;
+  solver::clear_interrupt();
+  struct sigaction sa {};
+  sa.sa_handler = on_sigint;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, &g_python_handler);
+}
+
+InterruptGuard::~InterruptGuard() {
+  std::lock_guard<std::mutex> lock(g_guard_mutex);
+  if (--g_guards > 0) return;
+  sigaction(SIGINT, &g_python_handler, nullptr);
+  solver::clear_interrupt();  // so that later runs outside a guard (sweeps) are not stopped
+}
+
+std::string command_text() { return std::string("phasmid ") + PHASMID_VERSION + " Python module"; }
+
+py::array view(const double* data, std::vector<py::ssize_t> shape, std::vector<py::ssize_t> strides, py::handle base) {
+  py::array a(py::dtype::of<double>(), std::move(shape), std::move(strides), data, base);
+  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
+py::array view(const std::vector<double>& v, py::handle base) {
+  return view(v.data(), {static_cast<py::ssize_t>(v.size())}, {sizeof(double)}, base);
+}
+
+std::shared_ptr<PyScenario> make_scenario(config::Config cfg, std::vector<std::string> sets) {
+  auto s = std::make_shared<PyScenario>();
+  s->cfg = std::move(cfg);
+  s->sets = std::move(sets);
+  config_stage([&] {
+    s->scenario = config::build_scenario(s->cfg, s->sets);
+    s->settings = config::simulation_settings(s->cfg, s->scenario.get());
+  });
+  return s;
+}
+
+namespace {
+void bind_errors(py::module_& m) {
+  static py::exception<Error> error(m, "Error");
+  static py::exception<ConfigError> config_error(m, "ConfigError", error.ptr());
+  static py::exception<SolverError> solver_error(m, "SolverError", error.ptr());
+  // Translators run newest first: the most derived kinds are registered last.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const solver::Interrupted& e) {
+      PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+    } catch (const ConfigError& e) {
+      config_error(e.what());
+    } catch (const SolverError& e) {
+      solver_error(e.what());
+    } catch (const Error& e) {
+      error(e.what());
+    }
+  });
+}
+}  // namespace
+}  // namespace phasmid::python
+
+PYBIND11_MODULE(_core, m) {
+  namespace py = pybind11;
+  using namespace phasmid::python;
+  m.doc() = "C++ core of the phasmid Python module; use the phasmid package (docs/python.md).";
+  m.attr("__version__") = PHASMID_VERSION;
+  bind_errors(m);
+  bind_scenario(m);
+  bind_sensitivity(m);
+  bind_analyses(m);
+  m.def("write_report", [](const std::string& h5, const std::string& html) {
+    phasmid::report::write_report(h5, html);
+  }, py::arg("h5_path"), py::arg("html_path"), "Write the HTML report of a phasmid HDF5 file (phasmid report).");
+}
