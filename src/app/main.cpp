@@ -24,6 +24,14 @@ std::string error_prefix() {
   return r == 0 ? "phasmid: " : "phasmid (rank " + std::to_string(r) + "): ";
 }
 
+// Errors are one line of text (docs/cli.md) even when they quote input with line breaks or
+// other control characters in it.
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (static_cast<unsigned char>(c) < 0x20) c = ' ';
+  return s;
+}
+
 // A rank that fails while others may wait for it ends the whole MPI job.
 int failed(int code) {
   std::cerr.flush();
@@ -40,6 +48,10 @@ int main(int argc, char** argv) {
   CLI::App app{"phasmid: simulation, sensitivities, fits and sweeps of the stick-insect walking model"};
   app.set_version_flag("--version", std::string(PHASMID_VERSION) + " (" + phasmid::dist::mpi_description() + ")");
   app.require_subcommand(1);
+  // Usage errors in one line, like every other error (docs/cli.md).
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "phasmid: error: " + one_line(e.what()) + " (see phasmid --help)\n";
+  });
   std::function<int()> action;
   for (auto& verb : verbs()) {
     CLI::App* sub = app.add_subcommand(verb.name, verb.description);
@@ -61,10 +73,10 @@ int main(int argc, char** argv) {
   try {
     return action ? action() : 1;
   } catch (const phasmid::Error& e) {
-    std::cerr << error_prefix() << "error: " << e.what() << "\n";
+    std::cerr << error_prefix() << "error: " << one_line(e.what()) << "\n";
     return failed(1);
   } catch (const std::exception& e) {
-    std::cerr << error_prefix() << "internal error: " << e.what() << "\n";
+    std::cerr << error_prefix() << "internal error: " << one_line(e.what()) << "\n";
     return failed(2);
   }
 }

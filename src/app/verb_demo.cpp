@@ -14,6 +14,7 @@
 #include "app/verb.hpp"
 #include "common/embedded.hpp"
 #include "common/error.hpp"
+#include "io/output_path.hpp"
 
 namespace phasmid::app {
 namespace {
@@ -63,7 +64,10 @@ int run_child(const std::vector<std::string>& args) {
 
 int run_demo(const std::string& dir_arg) {
   fs::path dir = dir_arg.empty() ? fs::path("demo_output") : fs::path(dir_arg);
-  fs::create_directories(dir);
+  io::check_output_directory(dir.string());
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw Error("demo: cannot create " + dir.string() + ": " + ec.message());
   const std::string exe = self_path();
   const auto& embedded = embedded::files();
   std::vector<std::pair<std::string, std::string>> written;  // h5, html

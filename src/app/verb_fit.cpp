@@ -15,6 +15,7 @@
 #include "config/fit_section.hpp"
 #include "fit/fit_run.hpp"
 #include "io/h5_file.hpp"
+#include "io/output_path.hpp"
 
 namespace phasmid::app {
 namespace {
@@ -42,6 +43,7 @@ void print_estimates_json(const fit::ResidualProblem& problem, const fit::FitRes
 // The same for every model kind: the kind makes the residual problem of [fit]; optimise,
 // write /fit, print the summary.
 int run_fit_verb(const FitArgs& a) {
+  io::check_output_path(a.out, {a.config, a.ov.data, a.ov.parameters});
   config::Config cfg = config::load_config(a.config);
   auto scenario = config::build_scenario(cfg, a.sets);
   fit::FitSpec spec;
@@ -52,6 +54,9 @@ int run_fit_verb(const FitArgs& a) {
     fit::run_fit(*problem, spec);
     return 0;
   }
+  std::vector<std::string> inputs = spec.inputs;
+  inputs.push_back(a.config);
+  io::check_output_path(a.out, inputs);  // the data and parameter files the config names
   io::H5Writer w(a.out);  // opened before the work so an unwritable path fails early
   fit::FitResult result = fit::run_fit(*problem, spec);
   write_run_file(w, cfg, a.sets, *scenario);

@@ -10,6 +10,7 @@
 #include "config/gsa_inputs.hpp"
 #include "dist/executor.hpp"
 #include "dist/session.hpp"
+#include "io/output_path.hpp"
 #include "sweep/sweep_runner.hpp"
 
 namespace phasmid::app {
@@ -31,6 +32,7 @@ bool sweep_already_done(const GsaArgs& a) {
 }
 
 int run(const GsaArgs& a) {
+  io::check_output_path(a.out, {a.config}, {sweep::Journal::path_for(a.out)});
   const config::GsaInputs in = config::gsa_inputs(config::load_config(a.config), a.sets);
   const bool sweep_done = sweep_already_done(a);
   if (sweep_done && dist::rank() != 0) return 0;  // MPI worker rank: rank 0 analyses

@@ -6,6 +6,7 @@
 #include "app/write_output.hpp"
 #include "common/error.hpp"
 #include "config/config.hpp"
+#include "io/output_path.hpp"
 #include "config/sensitivity_section.hpp"
 #include "sensitivity/job.hpp"
 
@@ -18,6 +19,7 @@ struct SensitivityArgs {
 };
 
 int run_sensitivity(const SensitivityArgs& a) {
+  io::check_output_path(a.out, {a.config});
   config::Config cfg = config::load_config(a.config);
   auto scenario = config::build_scenario(cfg, a.sets);
   const model::OdeModel* model = scenario->ode_model();

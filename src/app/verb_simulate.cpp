@@ -5,6 +5,7 @@
 #include "app/verb.hpp"
 #include "app/write_output.hpp"
 #include "config/config.hpp"
+#include "io/output_path.hpp"
 
 namespace phasmid::app {
 namespace {
@@ -15,6 +16,7 @@ struct SimulateArgs {
 };
 
 int run_simulate(const SimulateArgs& a) {
+  io::check_output_path(a.out, {a.config});
   config::Config cfg = config::load_config(a.config);
   auto scenario = config::build_scenario(cfg, a.sets);
   config::SimulationSettings s = config::simulation_settings(cfg, scenario.get());

@@ -10,6 +10,8 @@
 #include "config/sweep_inputs.hpp"
 #include "dist/executor.hpp"
 #include "io/h5_file.hpp"
+#include "io/output_path.hpp"
+#include "sweep/sweep_store.hpp"
 #include "sweep/ranges.hpp"
 #include "sweep/sweep_runner.hpp"
 
@@ -45,6 +47,7 @@ void print_ranges(const std::string& path, bool json) {
 }
 
 int run(const SweepArgs& a) {
+  io::check_output_path(a.out, {a.config}, {sweep::Journal::path_for(a.out)});
   config::Config cfg = config::load_config(a.config);
   sweep::SweepOptions o;
   o.output = a.out;

@@ -85,13 +85,11 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
   };
   get("t_end_ms", s.t_end_ms, 0);
   get("output_dt_ms", s.output_dt_ms, 0);
-  if (const toml::node* n = st->get("discard_ms")) {
-    s.discard_ms = number(cfg, *n, "discard_ms");
-    if (s.discard_ms < 0 || s.discard_ms >= s.t_end_ms)
-      throw Error(where(cfg, *n) + ": 'discard_ms' must be in [0, t_end_ms)");
-  }
+  if (const toml::node* n = st->get("discard_ms")) s.discard_ms = number(cfg, *n, "discard_ms");
+  check_run_times(s.t_end_ms, s.output_dt_ms, s.discard_ms, where(cfg, *st) + ": [simulation]");
   get("rtol", s.solver.rtol, 0);
   get("atol", s.solver.atol, 0);
+  if (s.solver.rtol >= 1) throw Error(where(cfg, *st->get("rtol")) + ": 'rtol' must be < 1");
   get("max_step_ms", s.solver.max_step_ms, 0);
   if (const toml::node* n = st->get("linear_solver")) {
     std::string v = n->value<std::string>().value_or("");

@@ -251,6 +251,22 @@ void load_fit_common(const config::Config& cfg, const toml::table& fit, const Fi
     throw Error(cfg.path + ": no fit parameters (give --parameters PARAMS.tsv, fit.parameter_table or [fit.parameters])");
 }
 
+namespace {
+// Every simulated horizon of the fit (t_end_ms, switch times, the last data sample) within the
+// bound of every run (config::kMaxTEndMs).
+void check_horizon(const config::Config& cfg, const FitSpec& spec) {
+  auto check = [&](double t_ms, const std::string& where, const std::string& what) {
+    if (!(t_ms <= config::kMaxTEndMs))
+      throw Error(where + ": " + what + " " + std::to_string(t_ms) + " ms is beyond the longest run, " +
+                  std::to_string(config::kMaxTEndMs) + " ms (docs/config.md)");
+  };
+  check(spec.problem.t_end_ms, cfg.path, "[fit] t_end_ms");
+  for (const auto& s : spec.targets.switches) check(s.time_ms, cfg.path, "switch time");
+  for (const auto& k : spec.targets.kinematics)
+    if (!k.data.time_ms.empty()) check(k.data.time_ms.back(), k.file, "the data's last time_ms");
+}
+}  // namespace
+
 FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, const FitOverrides& ov) {
   FitSpec spec;
   config::SimulationSettings sim = config::simulation_settings(cfg);
@@ -338,6 +354,7 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
     else if (format == "anipose") k.data = read_anipose_csv(file, ap);
     else throw Error(k.origin + ": data format must be \"csv\" or \"anipose\", got '" + format + "'");
     spec.inputs.push_back(file);
+    k.file = file;
     spec.targets.kinematics.push_back(std::move(k));
   };
   if (!ov.data.empty()) read_data(data_tables.empty() ? nullptr : data_tables[0], ov.data);
@@ -351,6 +368,7 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
   else if (!spec.targets.features.empty()) spec.problem.t_end_ms = sim.t_end_ms;
   if (!spec.targets.features.empty() && spec.problem.discard_ms >= spec.problem.t_end_ms)
     throw Error(cfg.path + ": discard_ms must be below t_end_ms for feature targets");
+  check_horizon(cfg, spec);
   spec.optimizer.progress_label = "fit";
   if (spec.targets.empty())
     throw Error(cfg.path + ": the fit has no targets (give --data KIN.csv, [[fit.feature]], [[fit.switch]] or [fit.data])");

@@ -1,5 +1,7 @@
 #include "config/sensitivity_section.hpp"
 
+#include <cmath>
+
 #include "common/error.hpp"
 
 namespace phasmid::config {
@@ -9,8 +11,9 @@ namespace {
 using config::where;
 
 double number(const toml::node& n, const std::string& key, const std::string& origin) {
-  if (auto v = n.value<double>()) return *v;
-  throw Error(where(origin, n) + ": [sensitivity] " + key + " must be a number");
+  auto v = n.value<double>();
+  if (!v || !std::isfinite(*v)) throw Error(where(origin, n) + ": [sensitivity] " + key + " must be a finite number");
+  return *v;
 }
 
 bool boolean(const toml::node& n, const std::string& key, const std::string& origin) {
@@ -95,8 +98,7 @@ SensitivityJob parse_sensitivity_section(const toml::table& section, const model
     }
   }
   const auto& o = job.options;
-  if (!(o.t_end_ms > 0) || !(o.output_dt_ms > 0) || o.discard_ms < 0 || o.discard_ms >= o.t_end_ms)
-    throw Error(origin + ": [sensitivity] needs t_end_ms > 0, output_dt_ms > 0 and 0 <= discard_ms < t_end_ms");
+  check_run_times(o.t_end_ms, o.output_dt_ms, o.discard_ms, origin + ": [sensitivity]");
   if (!(o.fd_relative_step > 0)) throw Error(origin + ": [sensitivity] fd_relative_step must be > 0");
   return job;
 }

@@ -122,6 +122,7 @@ void parse_run_length(const config::Config& cfg, const toml::table& st, const to
     throw Error((n ? where(cfg, *n) : where(cfg, sn)) + ": discard_ms (" + std::to_string(spec.discard_ms) +
                 ") must be less than t_end_ms (" + std::to_string(spec.t_end_ms) + ")");
   }
+  config::check_run_times(spec.t_end_ms, std::min(sim.output_dt_ms, spec.t_end_ms), spec.discard_ms, where(cfg, sn) + ": [sweep]");
 }
 
 // Looks up a swept parameter by name (an error naming the line if unknown or swept twice).

@@ -1,12 +1,14 @@
 #include "config/toml_util.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "common/embedded.hpp"
 #include "common/error.hpp"
+#include "io/text_file.hpp"
 
 namespace phasmid::config {
 namespace fs = std::filesystem;
@@ -24,8 +26,48 @@ std::string text(const Config& cfg, const toml::node& node, const std::string& k
 }
 
 double number(const Config& cfg, const toml::node& node, const std::string& key) {
-  if (auto v = node.value<double>()) return *v;
-  throw Error(where(cfg, node) + ": '" + key + "' must be a number");
+  auto v = node.value<double>();
+  if (!v) throw Error(where(cfg, node) + ": '" + key + "' must be a number");
+  if (!std::isfinite(*v)) throw Error(where(cfg, node) + ": '" + key + "' must be a finite number");
+  return *v;
+}
+
+namespace {
+std::string g(double v) {
+  std::ostringstream os;
+  os.precision(10);  // enough to tell a value just beyond a bound from the bound
+  os << v;
+  return os.str();
+}
+}  // namespace
+
+double number_in(const Config& cfg, const toml::node& node, const std::string& key, double lo, double hi) {
+  const double v = number(cfg, node, key);
+  if (v < lo || v > hi)
+    throw Error(where(cfg, node) + ": '" + key + "' = " + g(v) + " is outside [" + g(lo) + ", " + g(hi) + "]");
+  return v;
+}
+
+void check_run_times(double t_end_ms, double output_dt_ms, double discard_ms, const std::string& where) {
+  if (!(t_end_ms > 0 && t_end_ms <= kMaxTEndMs))
+    throw Error(where + ": t_end_ms = " + g(t_end_ms) + " must be in (0, " + g(kMaxTEndMs) + "] ms");
+  if (!(discard_ms >= 0 && discard_ms < t_end_ms))
+    throw Error(where + ": discard_ms = " + g(discard_ms) + " must be in [0, t_end_ms = " + g(t_end_ms) + ")");
+  if (!(output_dt_ms >= kMinOutputDtMs && output_dt_ms <= t_end_ms))
+    throw Error(where + ": output_dt_ms = " + g(output_dt_ms) + " must be in [" + g(kMinOutputDtMs) +
+                ", t_end_ms] ms");
+  if ((t_end_ms - discard_ms) / output_dt_ms > kMaxOutputSamples)
+    throw Error(where + ": (t_end_ms - discard_ms) / output_dt_ms = " + g((t_end_ms - discard_ms) / output_dt_ms) +
+                " samples; at most " + g(kMaxOutputSamples) + " (raise output_dt_ms)");
+}
+
+const std::vector<std::string>& known_sections() {
+  static const std::vector<std::string> sections = {
+      "model", "parameters", "simulation", "triggers", "sensitivity", "fit", "sweep",
+      "gsa",           // [gsa] of `phasmid gsa`
+      "continuation",  // [continuation] of `phasmid continue`
+  };
+  return sections;
 }
 
 bool boolean(const Config& cfg, const toml::node& node, const std::string& key) {
@@ -101,16 +143,20 @@ Config parse_config(const std::string& text, const std::string& origin) {
     throw Error(origin + ":" + std::to_string(e.source().begin.line) + ": malformed config: " +
                 std::string(e.description()));
   }
+  const auto& known = known_sections();
+  for (auto& [k, v] : cfg.table) {
+    const std::string key(k.str());
+    if (key == "cruse1980" || std::find(known.begin(), known.end(), key) != known.end()) continue;  // [cruse1980]: build_scenario says what replaced it
+    const std::string near = nearest(key, known);
+    throw Error(where(cfg, v) + ": unknown section [" + key + "]" + (near.empty() ? "" : " (did you mean [" + near + "]?)") +
+                "; the sections are described in docs/config.md");
+  }
   return cfg;
 }
 
 Config load_config(const std::string& path) {
   if (fs::exists(path)) {
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot read config");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return parse_config(ss.str(), path);
+    return parse_config(io::read_text_file(path, "config"), path);
   }
   const auto& files = embedded::files();
   for (const std::string& key : {path, "configs/" + path, "configs/" + path + ".toml"}) {

@@ -9,6 +9,7 @@
 #include <exception>
 #include <mutex>
 
+#include "common/error.hpp"
 #include "dist/session.hpp"
 
 namespace phasmid::dist {
@@ -68,12 +69,22 @@ class OpenMPExecutor final : public Executor {
 
 }  // namespace
 
-std::unique_ptr<Executor> make_openmp_executor(int threads) { return std::make_unique<OpenMPExecutor>(threads); }
+int bounded_threads(int threads) {
+  const int n = threads > 0 ? threads : omp_get_max_threads();
+  if (n > kMaxThreads)
+    throw Error((threads > 0 ? "-j/--threads " : "OMP_NUM_THREADS ") + std::to_string(n) + ": at most " +
+                std::to_string(kMaxThreads) + " worker threads per process");
+  return n;
+}
+
+std::unique_ptr<Executor> make_openmp_executor(int threads) {
+  return std::make_unique<OpenMPExecutor>(bounded_threads(threads));
+}
 
 std::unique_ptr<Executor> make_executor(int threads) {
   if (size() > 1) {
     if (threads <= 0) threads = std::getenv("OMP_NUM_THREADS") ? omp_get_max_threads() : 1;
-    return make_mpi_executor(threads);
+    return make_mpi_executor(bounded_threads(threads));
   }
   return make_openmp_executor(threads);
 }

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 
 #include "common/error.hpp"
 #include "common/units.hpp"
+#include "features/joint_range.hpp"
 #include "io/h5_file.hpp"
 #include "io/trajectory_writer.hpp"
 
@@ -85,6 +87,7 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
       offset_ids.insert(k.time_offset_parameter);
     }
   std::set<std::string> seen;
+  std::map<size_t, std::string> claimed;  // model parameter -> the id that names it
   for (auto& fp : params_) {
     const std::string w = fp.origin.empty() ? "" : fp.origin + ": ";
     if (!seen.insert(fp.id).second) throw Error(w + "parameter '" + fp.id + "' given twice");
@@ -96,6 +99,10 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
     std::vector<size_t> ks = match_parameters(ps, fp.id, w);
     for (size_t k : ks) {
       const model::Parameter& mp = ps.at(k);
+      // Two ids naming one model parameter would estimate it twice (or fix and estimate it).
+      auto [it, fresh] = claimed.emplace(k, fp.id);
+      if (!fresh)
+        throw Error(w + "parameter '" + fp.id + "' names " + mp.name + ", which '" + it->second + "' names already");
       if (fp.estimate) {
         if (fp.lower < mp.lower || fp.upper > mp.upper)
           throw Error(w + "bounds [" + fmt(fp.lower) + ", " + fmt(fp.upper) + "] of '" + mp.name +
@@ -249,6 +256,7 @@ FitProblem::Run FitProblem::run(const double* x, bool with_sens) const {
   std::vector<solver::RootSpec> roots;
   if (!targets_.features.empty()) roots = features::feature_roots(model_, R.p);
   R.res = sim.run(R.p, times, roots, with_sens ? sens_params_ : std::vector<size_t>{});
+  features::check_joint_ranges(model_, R.res);  // a run beyond them is a failed evaluation
   if (R.res.t.size() != times.size()) throw SolverError("internal: simulation returned too few outputs");
   return R;
 }

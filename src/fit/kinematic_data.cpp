@@ -6,17 +6,12 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "io/text_file.hpp"
 #include "fit/text_table.hpp"
 
 namespace phasmid::fit {
 namespace {
-std::string slurp(const std::string& path, const char* what) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot read " + what);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string slurp(const std::string& path, const char* what) { return io::read_text_file(path, what); }
 
 void check_times(const KinematicData& d, const std::vector<size_t>& lines, const std::string& origin) {
   for (size_t k = 0; k < d.time_ms.size(); ++k) {
@@ -96,6 +91,8 @@ KinematicData parse_anipose_csv(const std::string& text, const std::string& orig
   std::vector<size_t> lines;
   for (const auto& row : t.rows) {
     double f = cell_number(row, fcol, "fnum", origin);
+    if (f < 0 || f != std::floor(f))
+      throw Error(origin + ":" + std::to_string(row.line) + ": fnum " + row.cells[fcol] + " is not a frame number (an integer >= 0)");
     d.time_ms.push_back((f - o.fnum_offset) / o.frame_rate_hz * 1000.0);
     lines.push_back(row.line);
     for (size_t a = 0; a < acols.size(); ++a)

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "io/text_file.hpp"
 #include "fit/text_table.hpp"
 
 namespace phasmid::fit {
@@ -119,11 +120,7 @@ std::vector<FitParameter> parse_parameter_table(const std::string& text, const s
 }
 
 std::vector<FitParameter> read_parameter_table(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot read parameter table");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_parameter_table(ss.str(), path);
+  return parse_parameter_table(io::read_text_file(path, "parameter table"), path);
 }
 
 std::string format_parameter_table(const std::vector<FitParameter>& params) {

@@ -37,6 +37,7 @@ struct KinematicTarget {
   double t_min_ms = 0;              // samples before this (model time) are ignored (transient)
   std::string time_offset_parameter;  // empty: no offset; else a fit parameter id (ms), model time = data time + offset
   std::string origin;
+  std::string file;  // the recording read
 };
 
 struct Targets {

@@ -52,6 +52,7 @@ TextTable parse_text_table(const std::string& text, const std::string& origin, c
     std::string tl = trim(line);
     if (tl.empty() || tl[0] == '#') continue;
     const std::string where = origin + ":" + std::to_string(line_no);
+    if (line.find('\0') != std::string::npos) throw Error(where + ": NUL byte (not a text file)");
     std::vector<std::string> cells = split(line, delimiter, where);
     if (t.header.empty()) {
       t.header_line = line_no;
@@ -85,8 +86,9 @@ double cell_number(const TextRow& row, size_t col, const std::string& column_nam
   const char* b = s.c_str();
   char* end = nullptr;
   double v = std::strtod(b, &end);
-  if (end == b || *end != '\0') throw Error(where + ": '" + s + "' in column '" + column_name + "' is not a number");
+  if (end == b || end != b + s.size()) throw Error(where + ": '" + s + "' in column '" + column_name + "' is not a number");
   if (std::isnan(v) && !allow_missing) throw Error(where + ": missing value in column '" + column_name + "'");
+  if (std::isinf(v)) throw Error(where + ": '" + s + "' in column '" + column_name + "' is not a finite number");
   return v;
 }
 

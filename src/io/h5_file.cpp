@@ -1,18 +1,26 @@
 #include "io/h5_file.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
 
 #include "common/error.hpp"
+#include "io/output_path.hpp"
 #include "build_info.hpp"
 
 namespace phasmid::io {
 namespace {
 
+// HDF5 closes what is still open when the process exits; a file whose close failed (a full
+// disk) is still open and that second close crashes inside HDF5, after our error message. Files
+// are closed by H5Writer and H5Reader themselves, so the exit-time close is not needed.
 struct SilenceHdf5 {
-  SilenceHdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+  SilenceHdf5() {
+    H5dont_atexit();  // before any other HDF5 call
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
 };
 const SilenceHdf5 silence_hdf5_once;  // we report errors ourselves, in one line
 
@@ -41,8 +49,11 @@ std::string now_iso8601() {
 }  // namespace
 
 H5Writer::H5Writer(const std::string& path) : path_(path), tmp_path_(path + ".tmp") {
+  check_output_path(path);
   auto dir = std::filesystem::path(path).parent_path();
-  if (!dir.empty()) std::filesystem::create_directories(dir);
+  std::error_code ec;
+  if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+  if (ec) throw Error("cannot create directory " + dir.string() + " for " + path + ": " + ec.message());
   file_ = H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   if (file_ < 0) throw Error("cannot create HDF5 file " + tmp_path_);
 }
@@ -87,7 +98,7 @@ void write_numeric(H5Writer& w, hid_t file, const std::string& path, const std::
   herr_t st = data.empty() ? 0 : H5Dwrite(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data());
   H5Dclose(ds);
   H5Sclose(space);
-  check(st, "cannot write " + path);
+  check(st, "cannot write " + path + " to " + w.final_path() + ".tmp");
   w.set_attribute(path, "units", units);
 }
 }  // namespace
@@ -116,7 +127,7 @@ void H5Writer::write(const std::string& path, const std::vector<std::string>& da
   if (ds >= 0) H5Dclose(ds);
   H5Sclose(space);
   H5Tclose(type);
-  check(st, "cannot write " + path);
+  check(st, "cannot write " + path + " to " + tmp_path_);
   set_attribute(path, "units", "1");
 }
 
@@ -127,7 +138,7 @@ void H5Writer::write_scalar(const std::string& path, const double value, const s
   herr_t st = ds < 0 ? -1 : H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value);
   if (ds >= 0) H5Dclose(ds);
   H5Sclose(space);
-  check(st, "cannot write " + path);
+  check(st, "cannot write " + path + " to " + tmp_path_);
   set_attribute(path, "units", units);
 }
 
@@ -143,7 +154,7 @@ void H5Writer::write_string(const std::string& path, const std::string& value) {
   if (ds >= 0) H5Dclose(ds);
   H5Sclose(space);
   H5Tclose(type);
-  check(st, "cannot write " + path);
+  check(st, "cannot write " + path + " to " + tmp_path_);
   set_attribute(path, "units", "1");
 }
 
@@ -161,7 +172,7 @@ void H5Writer::set_attribute(const std::string& object_path, const std::string& 
   H5Sclose(space);
   H5Tclose(type);
   H5Oclose(obj);
-  check(st, "cannot write attribute " + name + " on " + object_path);
+  check(st, "cannot write attribute " + name + " on " + object_path + " to " + tmp_path_);
 }
 
 void H5Writer::set_attribute(const std::string& object_path, const std::string& name, double value) {
@@ -173,7 +184,7 @@ void H5Writer::set_attribute(const std::string& object_path, const std::string& 
   if (attr >= 0) H5Aclose(attr);
   H5Sclose(space);
   H5Oclose(obj);
-  check(st, "cannot write attribute " + name + " on " + object_path);
+  check(st, "cannot write attribute " + name + " on " + object_path + " to " + tmp_path_);
 }
 
 void H5Writer::write_run_info(const RunInfo& info) {
@@ -186,8 +197,10 @@ void H5Writer::write_run_info(const RunInfo& info) {
 void H5Writer::commit() {
   if (committed_) return;
   check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flush failed for " + tmp_path_);
-  H5Fclose(file_);
+  const herr_t closed = H5Fclose(file_);
   file_ = -1;
+  // The close writes the last metadata: a file that failed it is not renamed into place.
+  check(closed, "cannot close " + tmp_path_);
   std::error_code ec;
   std::filesystem::rename(tmp_path_, path_, ec);
   if (ec) throw Error("cannot rename " + tmp_path_ + " to " + path_ + ": " + ec.message());
@@ -196,6 +209,7 @@ void H5Writer::commit() {
 
 H5Reader::H5Reader(const std::string& path) : path_(path) {
   if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
+  if (!std::filesystem::is_regular_file(path)) throw Error(path + ": not a regular file");  // a fifo would block
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file_ < 0) throw Error(path + ": not an HDF5 file");
 }
@@ -233,10 +247,27 @@ std::vector<hsize_t> H5Reader::dims(const std::string& path) const {
   return d;
 }
 
+// A dataset may declare any extent in a few bytes (unallocated or compressed storage): refuse
+// one whose values could not have come from a file of this size before allocating for them.
+void H5Reader::check_extent(hid_t ds, hid_t space, const std::string& path) const {
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  hsize_t file_bytes = 0;
+  H5Fget_filesize(file_, &file_bytes);
+  const double bytes = static_cast<double>(n) * 8.0;
+  const double limit = std::max(kMinReadLimitBytes, kMaxExpansion * static_cast<double>(file_bytes));
+  if (n < 0 || bytes > limit) {
+    H5Sclose(space);
+    H5Dclose(ds);
+    throw Error(path_ + ": dataset " + path + " declares " + std::to_string(n) + " values, more than a " +
+                std::to_string(file_bytes) + "-byte file holds");
+  }
+}
+
 std::vector<double> H5Reader::read_doubles(const std::string& path) const {
   hid_t ds = H5Dopen2(file_, path.c_str(), H5P_DEFAULT);
   if (ds < 0) throw Error(path_ + ": no dataset " + path);
   hid_t space = H5Dget_space(ds);
+  check_extent(ds, space, path);
   hssize_t n = H5Sget_simple_extent_npoints(space);
   std::vector<double> out(static_cast<size_t>(n));
   herr_t st = n ? H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) : 0;
@@ -250,6 +281,7 @@ std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
   hid_t ds = H5Dopen2(file_, path.c_str(), H5P_DEFAULT);
   if (ds < 0) throw Error(path_ + ": no dataset " + path);
   hid_t space = H5Dget_space(ds);
+  check_extent(ds, space, path);
   hssize_t n = H5Sget_simple_extent_npoints(space);
   hid_t type = H5Tcopy(H5T_C_S1);
   H5Tset_size(type, H5T_VARIABLE);

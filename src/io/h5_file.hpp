@@ -70,6 +70,10 @@ class H5Reader {
 
  private:
   std::pair<hid_t, hid_t> open_attribute(const std::string& object_path, const std::string& name) const;
+  // Bounds what a read allocates by the file's size (closes space and ds before throwing).
+  static constexpr double kMinReadLimitBytes = 64.0 * 1024 * 1024;
+  static constexpr double kMaxExpansion = 1000.0;  // HDF5's deflate stays far below this
+  void check_extent(hid_t ds, hid_t space, const std::string& path) const;
   std::string path_;
   hid_t file_ = -1;
 };

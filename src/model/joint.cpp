@@ -10,6 +10,11 @@ const char* kA10 = "Knops 2013, Table A.10 (Guschlbauer et al. 2007)";
 const char* kA11 = "Knops 2013, Table A.11 (Bassler 1983)";
 const char* kA12 = "Knops 2013, Table A.12 (Bassler 1983)";
 
+// Smallest admissible viscosity, g/s (docs/model.md "Admissible ranges"): without damping the
+// joint equations have no dissipation and the angle swings through every anatomical limit;
+// 0.01 g/s is a documented choice, 1250x below the smallest b_v of Tables A.14-A.23 (12.5 g/s).
+constexpr double kMinViscosityGs = 0.01;
+
 FtiGeometry<double> fti_geometry() { return {0.28, 1.41, 2.11, 1.05, 1.50, 0.34, 0.42}; }
 CtrGeometry<double> ctr_geometry() { return {3.5, 1.0, 1.05, 1.50}; }
 ThcGeometry<double> thc_geometry() { return {2.0, 2.5, 1.0, 1.5}; }
@@ -61,7 +66,7 @@ JointMechanics define_joint_mechanics(ParameterSet& ps, const std::string& leg, 
   j.inertia = add("inertia", t.inertia_gmm2, "g*mm^2", src,
                   type == JointType::Fti ? "moment of inertia of the tibia" : "effective moment of inertia of the femur (2.82)",
                   1e-9);
-  j.b_v = add("b_v", t.b_v_gs, "g/s", src, "muscle viscosity of the joint's muscle pair");
+  j.b_v = add("b_v", t.b_v_gs, "g/s", src, "muscle viscosity of the joint's muscle pair", kMinViscosityGs);
   j.k_inc_in_inc = add(std::string(n.k_inc) + "." + n.phase_inc, t.k_inc_in_inc, "mN/mm^2", src,
                        std::string(n.muscle_inc) + " spring constant during " + n.phase_inc);
   j.k_dec_in_inc = add(std::string(n.k_dec) + "." + n.phase_inc, t.k_dec_in_inc, "mN/mm^2", src,

@@ -14,6 +14,7 @@
 #include "common/embedded.hpp"
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
+#include "io/output_path.hpp"
 #include "sweep/ranges.hpp"
 #include "report/gsa_panels.hpp"
 
@@ -646,9 +647,7 @@ std::string default_output_path(const std::string& h5_path) {
 }
 
 void write_report(const std::string& h5_path, const std::string& html_path) {
-  std::error_code same_ec;
-  if (std::filesystem::exists(html_path) && std::filesystem::equivalent(h5_path, html_path, same_ec))
-    throw Error("report: the output " + html_path + " is the input file; choose another -o");
+  io::check_output_path(html_path, {h5_path});
   const std::string html = render_html(extract(h5_path));
   std::filesystem::path out(html_path);
   if (out.has_parent_path()) {

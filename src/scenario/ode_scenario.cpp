@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include "config/fit_section.hpp"
+#include "features/joint_range.hpp"
+#include "features/missing_features.hpp"
 #include "fit/fit_problem.hpp"
 #include "io/trajectory_writer.hpp"
 
@@ -24,6 +26,7 @@ class OdeRun : public ScenarioRun {
     features::FeatureOptions fo;
     fo.discard_ms = s.discard_ms;
     features_ = features::compute_features(model_, result_, fo);
+    missing_ = features::add_missing_features(features_, features::feature_catalogue(model_));
     // Command times resolved by [[triggers]] are recorded with the values they took.
     for (const auto& c : result_.commands) p_[c.parameter] = c.t_ms;
   }
@@ -33,6 +36,7 @@ class OdeRun : public ScenarioRun {
     io::write_trajectory(out, model_, result_);
     io::write_parameters(out, model_, p_);
     features::write_features_h5(out, features_);
+    features::mark_missing_features_h5(out, missing_);
   }
   // One line per triggered command time (its value reproduces the run with fixed times, e.g.
   // for `phasmid sensitivity`), and one per trigger that never fired.
@@ -50,6 +54,7 @@ class OdeRun : public ScenarioRun {
         lines.push_back("warning: trigger " + trigger_text(triggers[k]) + " for " +
                         model_.parameters().at(triggers[k].targets.front()).name +
                         " did not fire before the end of the run");
+    if (!missing_.empty()) lines.push_back("warning: " + features::missing_features_note(missing_));
     return lines;
   }
   std::string summary() const override {
@@ -64,6 +69,7 @@ class OdeRun : public ScenarioRun {
   solver::SolveResult result_;
   double t_end_ms_;
   std::vector<features::Feature> features_;
+  std::vector<std::string> missing_;  // catalogue features the run could not compute (NaN)
 };
 
 }  // namespace
@@ -72,6 +78,7 @@ std::unique_ptr<ScenarioRun> OdeScenario::run(const std::vector<double>& p, cons
   solver::Simulator sim(*model_, s.solver);
   solver::SolveResult r =
       sim.run(p, solver::output_grid(s.t_end_ms, s.output_dt_ms), features::feature_roots(*model_, p));
+  features::check_joint_ranges(*model_, r);
   return std::make_unique<OdeRun>(*model_, p, std::move(r), s);
 }
 
@@ -81,6 +88,7 @@ std::vector<features::Feature> OdeScenario::evaluate_features(const std::vector<
   // Features come from located events, so two output times suffice; CVODES steps the same
   // way whatever the output grid (it interpolates to output times in CV_NORMAL mode).
   solver::SolveResult r = sim.run(p, {0.0, s.t_end_ms}, features::feature_roots(*model_, p));
+  features::check_joint_ranges(*model_, r);
   features::FeatureOptions fo;
   fo.discard_ms = s.discard_ms;
   return features::compute_features(*model_, r, fo);

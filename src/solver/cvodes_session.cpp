@@ -29,6 +29,15 @@ std::string cvodes_flag_name(int flag) {
   return s;
 }
 
+std::string failure_advice(const SolverOptions& options, bool partitioned) {
+  std::vector<std::string> tries = {"--set on the offending parameter"};
+  if (options.rtol > kTightestUsefulRtol) tries.push_back("tighter tolerances");
+  if (partitioned) tries.push_back("partitioned = false");
+  std::string s = "(try " + tries[0];
+  for (size_t i = 1; i < tries.size(); ++i) s += (i + 1 == tries.size() ? ", or " : ", ") + tries[i];
+  return s + ")";
+}
+
 void add_counters(SolverStats& into, const SolverStats& from) {
   for (long SolverStats::*field : {&SolverStats::steps, &SolverStats::rhs_evals, &SolverStats::jac_evals,
                                    &SolverStats::error_test_failures, &SolverStats::newton_iterations,

@@ -28,6 +28,11 @@ namespace phasmid::solver {
 void check_cvodes(int flag, const char* what);
 // CVODES' name of a return flag ("CV_TOO_MUCH_WORK"; CVodeGetReturnFlagName's string freed).
 std::string cvodes_flag_name(int flag);
+// What to try after a failed integration, for the error message: "(try --set on the offending
+// parameter, tighter tolerances, ...)"; tighter tolerances only while rtol is above
+// kTightestUsefulRtol, below which CVODES cannot resolve more digits of a double.
+inline constexpr double kTightestUsefulRtol = 1e-13;
+std::string failure_advice(const SolverOptions& options, bool partitioned);
 // Adds the counters of `from` (steps, evaluations, failures, iterations, setups) to `into`.
 void add_counters(SolverStats& into, const SolverStats& from);
 

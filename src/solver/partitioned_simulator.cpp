@@ -291,7 +291,7 @@ double Partitioned::advance(CommandSchedule& s) {
     std::ostringstream os;
     os << "CVODES failed at t = " << tret << " ms in part " << ps.name << ": "
        << (too_much_work ? "CV_TOO_MUCH_WORK" : cvodes_flag_name(flag_))
-       << " (try --set on the offending parameter, tighter tolerances, or partitioned = false)";
+       << " " << failure_advice(options_, true);
     throw SolverError(os.str());
   }
   if (flag_ == CV_TSTOP_RETURN) ps.t = s.next_stop();

@@ -375,7 +375,7 @@ double WholeSystem::advance(CommandSchedule&) {
   if (flag_ < 0) {
     std::ostringstream os;
     os << "CVODES failed at t = " << t_ << " ms: " << cvodes_flag_name(flag_)
-       << " (try --set on the offending parameter, or tighter tolerances)";
+       << " " << failure_advice(options_, false);
     throw SolverError(os.str());
   }
   // Sensitivities are needed at events, at restarts and (if kept) at output times (record

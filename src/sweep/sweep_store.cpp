@@ -174,9 +174,11 @@ Journal::Journal(const std::string& path, std::uint64_t fingerprint, std::size_t
   } else {
     auto dir = fs::path(path).parent_path();
     if (!dir.empty()) fs::create_directories(dir);
-    fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_CLOEXEC, 0644);
+    // Lock before truncating: a sweep refused on a busy output must not empty the running one's journal.
+    fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
     if (fd_ < 0) throw Error(path + ": cannot create journal: " + std::strerror(errno));
     lock_or_throw();
+    if (::ftruncate(fd_, 0) != 0) throw Error(path + ": cannot truncate journal: " + std::strerror(errno));
     write_all(fd_, header + "\n", path_);
     ::fdatasync(fd_);
   }
