@@ -140,6 +140,26 @@ void CvodesSession::init_roots(const std::vector<int>& directions, CVRootFn g) {
   CVodeSetNoInactiveRootWarn(mem());
 }
 
+void CvodesSession::root_info(int* found) { check_cvodes(CVodeGetRootInfo(mem(), found), "CVodeGetRootInfo"); }
+
+int CvodesSession::interpolation_degree() {
+  int q = 0;
+  CVodeGetLastOrder(mem(), &q);
+  return q;
+}
+
+double CvodesSession::current_time() {
+  double t = 0.0;
+  CVodeGetCurrentTime(mem(), &t);
+  return t;
+}
+
+double CvodesSession::last_step() {
+  double h = 0.0;
+  CVodeGetLastStep(mem(), &h);
+  return h;
+}
+
 void CvodesSession::set_stop_time(double t) { check_cvodes(CVodeSetStopTime(mem(), t), "CVodeSetStopTime"); }
 
 int CvodesSession::advance(double tout, double* t, int itask) { return CVode(mem(), tout, y(), t, itask); }
