@@ -7,6 +7,7 @@
 #include "model/leg_tables.hpp"
 #include "model/network_model.hpp"
 #include "scenario/registry.hpp"
+#include "scenario/scenario.hpp"
 
 namespace phasmid::scenario::kinds {
 
@@ -39,6 +40,17 @@ inline model::MotoneuronModel motoneuron_key(const ModelSection& s) {
   } catch (const Error& e) {
     throw Error(s.where("motoneuron") + ": " + e.what());
   }
+}
+
+// The settings the method study chose for a network with spiking motoneurons (single joint
+// and leg; docs/benchmarks.md "Method study"): Dormand-Prince 5(4) at rtol = atol = 1e-6 meets
+// every duration within 0.01 ms and every angle within 0.01 deg of CVODES BDF at 1e-10, where
+// BDF needs 1e-8 and 1.4-1.5x the time.
+inline RunSettings spiking_network_defaults() {
+  RunSettings s;
+  s.solver.integrator = solver::IntegratorKind::ErkDp5;
+  s.solver.rtol = s.solver.atol = 1e-6;
+  return s;
 }
 
 }  // namespace phasmid::scenario::kinds
