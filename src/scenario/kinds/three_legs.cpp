@@ -6,6 +6,19 @@
 
 namespace phasmid::scenario {
 
+namespace {
+// The method study's cheapest settings whose durations stay within 0.01 ms and angles within
+// 0.01 deg of CVODES BDF at 1e-10 (docs/benchmarks.md "Method study"): with rate motoneurons
+// BDF per joint at 1e-7 (1e-6 misses by 0.02 ms; explicit methods are 3.5x slower), with
+// spiking ones Dormand-Prince 5(4) at 1e-7 (BDF misses by 1.9 ms at 1e-7).
+RunSettings three_legs_defaults(model::MotoneuronModel mn) {
+  RunSettings s;
+  s.solver.rtol = s.solver.atol = 1e-7;
+  if (mn == model::MotoneuronModel::Spiking) s.solver.integrator = solver::IntegratorKind::ErkDp5;
+  return s;
+}
+}  // namespace
+
 ModelKind three_legs_kind() {
   return {"three_legs", "three ipsilateral legs with intersegmental coupling, tetrapod or tripod (Section 2.6)",
           {"gait", "coupling", "coupling_strength", "coupling_gate", "direction_switch", "motoneuron"},
@@ -26,7 +39,7 @@ ModelKind three_legs_kind() {
               throw Error(s.where("coupling_gate") + ": " + e.what());
             }
             try {
-              return std::make_unique<OdeScenario>(model::build_three_leg_model(o));
+              return std::make_unique<OdeScenario>(model::build_three_leg_model(o), three_legs_defaults(o.motoneuron));
             } catch (const Error& e) {
               throw Error(s.where("gait") + ": " + e.what());
             }
