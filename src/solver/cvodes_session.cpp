@@ -22,12 +22,7 @@ void check_cvodes(int flag, const char* what) {
   if (flag < 0) throw SolverError(std::string("CVODES setup failed in ") + what + " (flag " + std::to_string(flag) + ")");
 }
 
-std::string cvodes_flag_name(int flag) {
-  char* name = CVodeGetReturnFlagName(flag);  // malloc'ed by CVODES
-  std::string s = name ? name : "flag " + std::to_string(flag);
-  std::free(name);
-  return s;
-}
+std::string cvodes_flag_name(int flag) { return take_flag_name(CVodeGetReturnFlagName(flag), flag); }
 
 void add_counters(SolverStats& into, const SolverStats& from) {
   for (long SolverStats::*field : {&SolverStats::steps, &SolverStats::rhs_evals, &SolverStats::jac_evals,
@@ -178,10 +173,6 @@ void CvodesSession::restart(double t) {
   }
 }
 
-N_Vector CvodesSession::work() {
-  if (!work_) work_.reset(N_VClone(y()));
-  return work_.get();
-}
 
 long CvodesSession::total_steps() const {
   long v = 0;

@@ -87,7 +87,6 @@ class CvodesSession : public IntegratorSession {
   N_Vector y() const override { return y_.get(); }
   N_Vector* s() const override { return yS_.get(); }
   int num_sensitivities() const { return ns_; }
-  N_Vector work() override;
   long total_steps() const override;
   SolverStats stats() const override;
 
@@ -118,7 +117,6 @@ class CvodesSession : public IntegratorSession {
   Owned<SUNLinearSolver> LS_;
   std::unique_ptr<void, Free> mem_;
   Owned<SUNNonlinearSolver> NLS_, NLS_sens_;
-  Owned<N_Vector> work_;
   SolverStats before_restarts_;  // CVodeReInit resets CVODES' counters
 };
 

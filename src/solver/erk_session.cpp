@@ -113,17 +113,7 @@ double ErkSession::last_step() {
   return h;
 }
 
-std::string ErkSession::flag_name(int flag) const {
-  char* name = ERKStepGetReturnFlagName(flag);  // malloc'ed by ARKODE
-  std::string s = name ? name : "flag " + std::to_string(flag);
-  std::free(name);
-  return s;
-}
-
-N_Vector ErkSession::work() {
-  if (!work_) work_.reset(N_VClone(y()));
-  return work_.get();
-}
+std::string ErkSession::flag_name(int flag) const { return take_flag_name(ERKStepGetReturnFlagName(flag), flag); }
 
 long ErkSession::total_steps() const {
   long v = 0;

@@ -44,7 +44,6 @@ class ErkSession : public IntegratorSession {
   const char* package() const override { return "ARKODE"; }
 
   N_Vector y() const override { return y_.get(); }
-  N_Vector work() override;
   long total_steps() const override;
   SolverStats stats() const override;
 
@@ -64,7 +63,6 @@ class ErkSession : public IntegratorSession {
   void* user_data_;
   Owned<N_Vector> y_;
   std::unique_ptr<void, Free> mem_;
-  Owned<N_Vector> work_;
   int degree_ = 3;
 };
 

@@ -16,12 +16,22 @@
 //  - Sensitivities exist on CVODES only: the other sessions throw from init_sensitivities.
 #include <cvodes/cvodes.h>
 
+#include <cstdlib>
+#include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "solver/simulator.hpp"
 
 namespace phasmid::solver {
+
+// A return flag's name from the package's malloc'ed string (freed here), or "flag N".
+inline std::string take_flag_name(char* name, int flag) {
+  std::string s = name ? name : "flag " + std::to_string(flag);
+  std::free(name);
+  return s;
+}
 
 class IntegratorSession {
  public:
@@ -44,13 +54,22 @@ class IntegratorSession {
 
   virtual N_Vector y() const = 0;
   // A scratch vector of the state's size (for dky), owned by the session.
-  virtual N_Vector work() = 0;
+  N_Vector work() {
+    if (!work_) work_.reset(N_VClone(y()));
+    return work_.get();
+  }
   virtual long total_steps() const = 0;
   virtual SolverStats stats() const = 0;  // counters since the start, over restarts
 
   // Forward sensitivities (CVODES only; see CvodesSession).
   virtual N_Vector* s() const { return nullptr; }
   virtual void fetch_sensitivities() {}
+
+ private:
+  struct DestroyVector {
+    void operator()(N_Vector v) const { N_VDestroy(v); }
+  };
+  std::unique_ptr<std::remove_pointer_t<N_Vector>, DestroyVector> work_;
 };
 
 }  // namespace phasmid::solver

@@ -42,14 +42,16 @@ inline model::MotoneuronModel motoneuron_key(const ModelSection& s) {
   }
 }
 
-// The settings the method study chose for a network with spiking motoneurons (single joint
-// and leg; docs/benchmarks.md "Method study"): Dormand-Prince 5(4) at rtol = atol = 1e-6 meets
-// every duration within 0.01 ms and every angle within 0.01 deg of CVODES BDF at 1e-10, where
-// BDF needs 1e-8 and 1.4-1.5x the time.
+// The settings the method study chose for a network with spiking motoneurons (docs/benchmarks.md
+// "Method study"): Dormand-Prince 5(4) at rtol = atol = 1e-6, one integrator per joint, meets
+// every duration within 0.01 ms and every angle within 0.01 deg of CVODES BDF at 1e-10 on the
+// joint, the leg and the three legs, where BDF needs 1e-8 (joint, leg) or misses at 1e-7
+// (three legs) and takes 1.4-1.8x the time.
 inline RunSettings spiking_network_defaults() {
   RunSettings s;
   s.solver.integrator = solver::IntegratorKind::ErkDp5;
   s.solver.rtol = s.solver.atol = 1e-6;
+  s.solver.partitioning = solver::Partitioning::On;
   return s;
 }
 

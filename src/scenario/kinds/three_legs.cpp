@@ -7,14 +7,13 @@
 namespace phasmid::scenario {
 
 namespace {
-// The method study's cheapest settings whose durations stay within 0.01 ms and angles within
-// 0.01 deg of CVODES BDF at 1e-10 (docs/benchmarks.md "Method study"): with rate motoneurons
-// BDF per joint at 1e-7 (1e-6 misses by 0.02 ms; explicit methods are 3.5x slower), with
-// spiking ones Dormand-Prince 5(4) at 1e-7 (BDF misses by 1.9 ms at 1e-7).
+// With rate motoneurons CVODES BDF per joint at 1e-7, the method study's cheapest setting
+// within 0.01 ms and 0.01 deg of BDF at 1e-10 (1e-6 misses by 0.02 ms; explicit methods,
+// bounded by the interneurons' stiffness, take 3.5x the time; docs/benchmarks.md).
 RunSettings three_legs_defaults(model::MotoneuronModel mn) {
+  if (mn == model::MotoneuronModel::Spiking) return kinds::spiking_network_defaults();
   RunSettings s;
   s.solver.rtol = s.solver.atol = 1e-7;
-  if (mn == model::MotoneuronModel::Spiking) s.solver.integrator = solver::IntegratorKind::ErkDp5;
   return s;
 }
 }  // namespace
