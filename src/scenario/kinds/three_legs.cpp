@@ -6,18 +6,6 @@
 
 namespace phasmid::scenario {
 
-namespace {
-// With rate motoneurons CVODES BDF per joint at 1e-7, the method study's cheapest setting
-// within 0.01 ms and 0.01 deg of BDF at 1e-10 (1e-6 misses by 0.02 ms; explicit methods,
-// bounded by the interneurons' stiffness, take 3.5x the time; docs/benchmarks.md).
-RunSettings three_legs_defaults(model::MotoneuronModel mn) {
-  if (mn == model::MotoneuronModel::Spiking) return kinds::spiking_network_defaults();
-  RunSettings s;
-  s.solver.rtol = s.solver.atol = 1e-7;
-  return s;
-}
-}  // namespace
-
 ModelKind three_legs_kind() {
   return {"three_legs", "three ipsilateral legs with intersegmental coupling, tetrapod or tripod (Section 2.6)",
           {"gait", "coupling", "coupling_strength", "coupling_gate", "direction_switch", "motoneuron"},
@@ -38,7 +26,9 @@ ModelKind three_legs_kind() {
               throw Error(s.where("coupling_gate") + ": " + e.what());
             }
             try {
-              return std::make_unique<OdeScenario>(model::build_three_leg_model(o), three_legs_defaults(o.motoneuron));
+              // Rate motoneurons: BDF per joint needs 1e-7 (1e-6 misses by 0.02 ms).
+              return std::make_unique<OdeScenario>(model::build_three_leg_model(o),
+                                                   kinds::network_defaults(o.motoneuron, 1e-7));
             } catch (const Error& e) {
               throw Error(s.where("gait") + ": " + e.what());
             }
