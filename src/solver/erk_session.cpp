@@ -33,8 +33,7 @@ ARKODE_ERKTableID table_of(IntegratorKind kind) {
 
 }  // namespace
 
-void ErkSession::Free::operator()(void* mem) const { ERKStepFree(&mem); }
-void ErkSession::Free::operator()(N_Vector v) const { N_VDestroy(v); }
+void ErkSession::FreeMemory::operator()(void* mem) const { ERKStepFree(&mem); }
 
 ErkSession::ErkSession(SUNContext ctx, const SolverOptions& options, const double* y0, size_t n, CVRhsFn rhs,
                        void* user_data)

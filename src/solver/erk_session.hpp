@@ -15,7 +15,6 @@
 //  - No forward sensitivities (they run on CVODES BDF: Simulator::run).
 #include <memory>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include "solver/integrator_session.hpp"
@@ -48,12 +47,9 @@ class ErkSession : public IntegratorSession {
   SolverStats stats() const override;
 
  private:
-  struct Free {
+  struct FreeMemory {
     void operator()(void* mem) const;
-    void operator()(N_Vector v) const;
   };
-  template <class Handle>
-  using Owned = std::unique_ptr<std::remove_pointer_t<Handle>, Free>;
   void* mem() const { return mem_.get(); }
   // ARKODE calls these with the session as user data; they call the driver's functions.
   static int rhs_trampoline(double t, N_Vector y, N_Vector ydot, void* self);
@@ -61,8 +57,8 @@ class ErkSession : public IntegratorSession {
   CVRhsFn rhs_;
   CVRootFn root_ = nullptr;
   void* user_data_;
-  Owned<N_Vector> y_;
-  std::unique_ptr<void, Free> mem_;
+  OwnedVector y_;
+  std::unique_ptr<void, FreeMemory> mem_;
   int degree_ = 3;
 };
 

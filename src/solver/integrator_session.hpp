@@ -65,11 +65,14 @@ class IntegratorSession {
   virtual N_Vector* s() const { return nullptr; }
   virtual void fetch_sensitivities() {}
 
- private:
+ protected:
   struct DestroyVector {
     void operator()(N_Vector v) const { N_VDestroy(v); }
   };
-  std::unique_ptr<std::remove_pointer_t<N_Vector>, DestroyVector> work_;
+  using OwnedVector = std::unique_ptr<std::remove_pointer_t<N_Vector>, DestroyVector>;
+
+ private:
+  OwnedVector work_;
 };
 
 }  // namespace phasmid::solver
