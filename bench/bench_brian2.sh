@@ -4,7 +4,8 @@
 # run time and feature accuracy, one table (docs/benchmarks.md, "phasmid vs Brian2").
 #
 #   bash bench/bench_brian2.sh [REPEATS [MODEL]]   (default 3, single_joint_fti; or middle_leg_forward)
-#   PHASMID=path overrides build/phasmid; PHASMID_TOLS, RK4_DTS, GSL_ERRORS, GSL_DT the ladders.
+#   PHASMID=path overrides build/phasmid; PHASMID_TOLS, RK4_DTS, GSL_ERRORS, GSL_DT the ladders;
+#   PHASMID_METHODS the phasmid integrators ([simulation] integrator; default "cvodes_bdf erk_dp5").
 #
 # Every row is checked against a tight-tolerance phasmid reference (rtol = atol = 1e-12):
 # the period and the mean extremal angles of every joint over [discard_ms, t_end_ms] =
@@ -32,6 +33,9 @@ case $MODEL in
 esac
 SHIPPED_TOL=$(sed -n 's/^rtol *= *//p' "$CONFIG")
 SHIPPED_TOL=${SHIPPED_TOL:-1e-8}  # the solver's default when the config sets none
+SHIPPED_METHOD=$(sed -n 's/^integrator *= *"\(.*\)"/\1/p' "$CONFIG")
+SHIPPED_METHOD=${SHIPPED_METHOD:-cvodes_bdf}
+PHASMID_METHODS=${PHASMID_METHODS:-"cvodes_bdf erk_dp5"}
 PHASMID_TOLS=${PHASMID_TOLS:-"1e-4 1e-5 1e-6 1e-7 1e-8 1e-9 1e-10"}
 RK4_DTS=${RK4_DTS:-"0.05 0.025 0.01 0.005"}
 GSL_ERRORS=${GSL_ERRORS:-"1e-2 1e-3 1e-4 1e-5 1e-6"}
@@ -53,11 +57,13 @@ process_cpu() {
   echo "$best" | tr ' ' '\n' | grep . | sort -g | head -1
 }
 
-# One phasmid row: simulate REPEATS times at rtol = atol = TOL, JSON line with times and features.
+# One phasmid row: simulate REPEATS times with integrator METHOD at rtol = atol = TOL, JSON line
+# with times and features.
 phasmid_row() {
-  local label=$1 tol=$2 h5=$TMP/phasmid_$2.h5 cfg=$TMP/phasmid_$2.toml
-  # The config's [simulation] tolerances replaced (or added: the leg config sets none).
-  grep -v "^[ra]tol *=" "$CONFIG" | sed -e "s/^\[simulation\]/[simulation]\nrtol = $tol\natol = $tol/" > "$cfg"
+  local label=$1 tol=$2 method=${3:-cvodes_bdf} h5=$TMP/phasmid_$2.h5 cfg=$TMP/phasmid_$2.toml
+  # The config's [simulation] tolerances and integrator replaced (or added: the leg config sets none).
+  grep -Ev "^([ra]tol|integrator) *=" "$CONFIG" |
+    sed -e "s/^\[simulation\]/[simulation]\nrtol = $tol\natol = $tol\nintegrator = \"$method\"/" > "$cfg"
   local proc
   proc=$(process_cpu "$cfg" "$h5")
   "$PHASMID" features "$h5" --json > "$TMP/features.json"
@@ -98,11 +104,13 @@ echo "bench_brian2: reference (phasmid, rtol = atol = 1e-12) ..." >&2
 REPEATS_SAVED=$REPEATS; REPEATS=1
 phasmid_row "reference" 1e-12
 REPEATS=$REPEATS_SAVED
-for tol in $PHASMID_TOLS; do
-  echo "bench_brian2: phasmid rtol = atol = $tol ..." >&2
-  label="phasmid CVODES BDF, rtol = atol = $tol"
-  [ "$tol" = "$SHIPPED_TOL" ] && label+=" (shipped)"
-  phasmid_row "$label" "$tol"
+for method in $PHASMID_METHODS; do
+  for tol in $PHASMID_TOLS; do
+    echo "bench_brian2: phasmid $method rtol = atol = $tol ..." >&2
+    label="phasmid $method, rtol = atol = $tol"
+    [ "$tol" = "$SHIPPED_TOL" ] && [ "$method" = "$SHIPPED_METHOD" ] && label+=" (shipped)"
+    phasmid_row "$label" "$tol" "$method"
+  done
 done
 for dt in $RK4_DTS; do
   echo "bench_brian2: Brian2 RK4 dt = $dt ms ..." >&2

@@ -16,7 +16,8 @@
 // the partitioned integration (solver/partitioned_simulator.hpp; the single joint is one part
 // either way). Times are the best of BENCH_REPEATS (default 3) runs.
 // Environment: BENCH_MAXORD=q limits the BDF order,
-// BENCH_STALD=1 switches on CVODES' stability limit detection (both measured, not adopted).
+// BENCH_STALD=1 switches on CVODES' stability limit detection (both measured, not adopted),
+// BENCH_INTEGRATOR=name selects the integrator ([simulation] integrator names: erk_dp5, ...).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -29,6 +30,7 @@
 #include "features/features.hpp"
 #include "model/leg_network.hpp"
 #include "model/network_builder.hpp"
+#include "solver/integrator_kind.hpp"
 #include "solver/simulator.hpp"
 
 using namespace phasmid;
@@ -45,6 +47,14 @@ int main(int argc, char** argv) {
   so.rtol = so.atol = argc > 5 ? std::atof(argv[5]) : 1e-6;  // default: the three-leg configs' tolerance
   if (const char* e = std::getenv("BENCH_MAXORD")) so.max_order = std::atoi(e);
   if (std::getenv("BENCH_STALD")) so.stability_limit_detection = true;
+  if (const char* e = std::getenv("BENCH_INTEGRATOR")) {
+    const auto kind = solver::integrator_from_name(e);
+    if (!kind) {
+      std::fprintf(stderr, "bench_walking: BENCH_INTEGRATOR must be one of %s\n", solver::integrator_names().c_str());
+      return 2;
+    }
+    so.integrator = *kind;
+  }
   if (ls == "dense") so.linear_solver = solver::LinearSolverKind::Dense;
   if (ls == "band") so.linear_solver = solver::LinearSolverKind::Band;
   if (ls == "klu") so.linear_solver = solver::LinearSolverKind::Klu;

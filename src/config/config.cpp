@@ -5,6 +5,7 @@
 #include "model/ode_model.hpp"
 #include "scenario/ode_scenario.hpp"
 #include "scenario/registry.hpp"
+#include "solver/integrator_kind.hpp"
 
 namespace phasmid::config {
 namespace {
@@ -76,7 +77,7 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
     throw Error(where(cfg, *st) + ": [simulation] does not apply to model type " + scenario->kind() +
                 " (its own parameters set the run; docs/config.md)");
   check_keys(cfg, *st, "simulation", {"t_end_ms", "output_dt_ms", "discard_ms", "rtol", "atol", "linear_solver", "max_step_ms",
-                                              "partitioned"});
+                                              "partitioned", "integrator"});
   auto get = [&](const char* key, double& out, double lo) {
     if (const toml::node* n = st->get(key)) {
       out = number(cfg, *n, key);
@@ -98,6 +99,11 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
     else if (v == "band") s.solver.linear_solver = solver::LinearSolverKind::Band;
     else if (v == "klu") s.solver.linear_solver = solver::LinearSolverKind::Klu;
     else throw Error(where(cfg, *n) + ": linear_solver must be \"auto\", \"dense\", \"band\" or \"klu\"");
+  }
+  if (const toml::node* n = st->get("integrator")) {
+    const auto kind = solver::integrator_from_name(n->value<std::string>().value_or(""));
+    if (!kind) throw Error(where(cfg, *n) + ": integrator must be one of " + solver::integrator_names());
+    s.solver.integrator = *kind;
   }
   if (const toml::node* n = st->get("partitioned")) {
     if (n->is_boolean()) {

@@ -12,7 +12,11 @@ namespace phasmid::scenario {
 
 class OdeScenario : public Scenario {
  public:
-  explicit OdeScenario(std::unique_ptr<model::OdeModel> model) : model_(std::move(model)) {}
+  // `defaults`: the kind's settings where the config's [simulation] says nothing (the
+  // integrator and tolerances its method study chose: docs/benchmarks.md "Method study").
+  explicit OdeScenario(std::unique_ptr<model::OdeModel> model, RunSettings defaults = {})
+      : model_(std::move(model)), defaults_(std::move(defaults)) {}
+  RunSettings default_settings() const override { return defaults_; }
 
   std::string kind() const override { return model_->kind(); }
   model::ParameterSet& parameters() override { return model_->parameters(); }
@@ -32,6 +36,7 @@ class OdeScenario : public Scenario {
 
  private:
   std::unique_ptr<model::OdeModel> model_;
+  RunSettings defaults_;
 };
 
 }  // namespace phasmid::scenario

@@ -22,12 +22,7 @@ void check_cvodes(int flag, const char* what) {
   if (flag < 0) throw SolverError(std::string("CVODES setup failed in ") + what + " (flag " + std::to_string(flag) + ")");
 }
 
-std::string cvodes_flag_name(int flag) {
-  char* name = CVodeGetReturnFlagName(flag);  // malloc'ed by CVODES
-  std::string s = name ? name : "flag " + std::to_string(flag);
-  std::free(name);
-  return s;
-}
+std::string cvodes_flag_name(int flag) { return take_flag_name(CVodeGetReturnFlagName(flag), flag); }
 
 std::string failure_advice(const SolverOptions& options, bool partitioned) {
   std::vector<std::string> tries = {"--set on the offending parameter"};
@@ -149,6 +144,26 @@ void CvodesSession::init_roots(const std::vector<int>& directions, CVRootFn g) {
   CVodeSetNoInactiveRootWarn(mem());
 }
 
+void CvodesSession::root_info(int* found) { check_cvodes(CVodeGetRootInfo(mem(), found), "CVodeGetRootInfo"); }
+
+int CvodesSession::interpolation_degree() {
+  int q = 0;
+  CVodeGetLastOrder(mem(), &q);
+  return q;
+}
+
+double CvodesSession::current_time() {
+  double t = 0.0;
+  CVodeGetCurrentTime(mem(), &t);
+  return t;
+}
+
+double CvodesSession::last_step() {
+  double h = 0.0;
+  CVodeGetLastStep(mem(), &h);
+  return h;
+}
+
 void CvodesSession::set_stop_time(double t) { check_cvodes(CVodeSetStopTime(mem(), t), "CVodeSetStopTime"); }
 
 int CvodesSession::advance(double tout, double* t, int itask) { return CVode(mem(), tout, y(), t, itask); }
@@ -167,10 +182,6 @@ void CvodesSession::restart(double t) {
   }
 }
 
-N_Vector CvodesSession::work() {
-  if (!work_) work_.reset(N_VClone(y()));
-  return work_.get();
-}
 
 long CvodesSession::total_steps() const {
   long v = 0;

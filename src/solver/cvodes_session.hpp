@@ -20,6 +20,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "solver/integrator_session.hpp"
 #include "solver/simulator.hpp"
 
 namespace phasmid::solver {
@@ -52,13 +53,13 @@ class SundialsContext {
 // Newton's linear systems (BDF): dense LU, band LU (half bandwidth) or KLU (sparse, nnz entries).
 enum class LinearSystem { Dense, Band, Sparse };
 
-class CvodesSession {
+class CvodesSession : public IntegratorSession {
  public:
   // The integrator at t = 0 from y0 (n states) for rhs(t, y, ydot, user_data): BDF or Adams,
   // scalar tolerances, step options and a silent error handler (phasmid reports failures).
   CvodesSession(SUNContext ctx, const SolverOptions& options, const double* y0, size_t n, CVRhsFn rhs,
                 void* user_data);
-  ~CvodesSession();
+  ~CvodesSession() override;
   CvodesSession(const CvodesSession&) = delete;
   CvodesSession& operator=(const CvodesSession&) = delete;
 
@@ -72,22 +73,27 @@ class CvodesSession {
   void init_sensitivities(const std::vector<std::vector<double>>& s0, CVSensRhsFn all, CVSensRhs1Fn one,
                           const std::vector<double>& pbar);
   // Root functions g (directions.size() of them) located in the given directions.
-  void init_roots(const std::vector<int>& directions, CVRootFn g);
-  void set_stop_time(double t);
+  void init_roots(const std::vector<int>& directions, CVRootFn g) override;
+  void set_stop_time(double t) override;
   // CVode towards tout in CV_NORMAL or CV_ONE_STEP mode; returns CVODES' flag (negative: failed).
-  int advance(double tout, double* t, int itask);
+  int advance(double tout, double* t, int itask) override;
   // The sensitivities at the time last returned, into s().
-  void fetch_sensitivities();
-  void restart(double t);
+  void fetch_sensitivities() override;
+  void restart(double t) override;
+  void root_info(int* found) override;
+  int dky(double t, int k, N_Vector out) override { return CVodeGetDky(mem(), t, k, out); }
+  int interpolation_degree() override;  // the order of the last step (Nordsieck array)
+  double current_time() override;
+  double last_step() override;
+  std::string flag_name(int flag) const override { return cvodes_flag_name(flag); }
+  const char* package() const override { return "CVODES"; }
 
   void* mem() const { return mem_.get(); }
-  N_Vector y() const { return y_.get(); }
-  N_Vector* s() const { return yS_.get(); }
+  N_Vector y() const override { return y_.get(); }
+  N_Vector* s() const override { return yS_.get(); }
   int num_sensitivities() const { return ns_; }
-  // A scratch vector of the state's size (for CVodeGetDky), owned by the session.
-  N_Vector work();
-  long total_steps() const;
-  SolverStats stats() const;  // counters since the start, over restarts
+  long total_steps() const override;
+  SolverStats stats() const override;
 
  private:
   struct Free {
@@ -105,7 +111,7 @@ class CvodesSession {
     int n;
     void operator()(N_Vector* v) const;
   };
-  const SolverOptions& options_;
+  const SolverOptions options_;  // a copy: callers may pass a temporary adjusted copy
   SUNContext ctx_;
   int ns_ = 0;
   // Destroyed in reverse order of declaration: the nonlinear solvers, then the CVODES memory,
@@ -116,7 +122,6 @@ class CvodesSession {
   Owned<SUNLinearSolver> LS_;
   std::unique_ptr<void, Free> mem_;
   Owned<SUNNonlinearSolver> NLS_, NLS_sens_;
-  Owned<N_Vector> work_;
   SolverStats before_restarts_;  // CVodeReInit resets CVODES' counters
 };
 

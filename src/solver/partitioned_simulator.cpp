@@ -13,6 +13,7 @@
 #include "common/error.hpp"
 #include "solver/command_schedule.hpp"
 #include "solver/cvodes_session.hpp"
+#include "solver/erk_session.hpp"
 #include "solver/run_loop.hpp"
 
 namespace phasmid::solver {
@@ -34,7 +35,7 @@ struct PartSolver {
   std::vector<std::pair<size_t, size_t>> input_from;  // per input: (part, index into that part's exports)
   std::vector<size_t> exports;                        // local indices of its states others read
   std::unique_ptr<model::OdeModelPart> eq;
-  std::unique_ptr<CvodesSession> session;
+  std::unique_ptr<IntegratorSession> session;
 
   std::vector<double> yfull, ffull;  // full-size state and derivative for the part's equations
   std::vector<JetK> yK, fK;
@@ -63,15 +64,13 @@ struct PartSolver {
 
   void update_polynomial() {
     if (exports.empty()) return;
-    int q = 0;
-    CVodeGetLastOrder(session->mem(), &q);
-    double tn = 0.0;
-    CVodeGetCurrentTime(session->mem(), &tn);
+    const int q = session->interpolation_degree();
+    const double tn = session->current_time();
     const size_t ne = exports.size();
     double factorial = 1.0;
     for (int d = 0; d <= q; ++d) {
       if (d > 0) factorial *= d;
-      check_cvodes(CVodeGetDky(session->mem(), tn, d, session->work()), "CVodeGetDky");
+      check_cvodes(session->dky(tn, d, session->work()), "the last step's interpolant (GetDky)");
       for (size_t e = 0; e < ne; ++e)
         coef[static_cast<size_t>(d) * ne + e] = NV_Ith_S(session->work(), exports[e]) / factorial;
     }
@@ -186,10 +185,14 @@ void start_sessions(Run& run, SUNContext ctx, const SolverOptions& options, cons
     // Before its first step a part's polynomial is its initial value.
     ps.coef.assign(static_cast<size_t>(kMaxOrder + 1) * ps.exports.size(), 0.0);
     for (size_t e = 0; e < ps.exports.size(); ++e) ps.coef[e] = y0[ps.states[ps.exports[e]]];
-    ps.session = std::make_unique<CvodesSession>(ctx, options, own.data(), own.size(), part_rhs, &ps);
-    // Parts are small (a joint: 20-26 states): dense LU with the compiled kernels.
-    ps.session->set_linear_solver(LinearSystem::Dense, 0, 0,
-                                  options.jacobian == JacobianKind::AutoDiff ? part_jac : nullptr);
+    if (is_explicit_rk(options.integrator)) {
+      ps.session = std::make_unique<ErkSession>(ctx, options, own.data(), own.size(), part_rhs, &ps);
+    } else {
+      auto cv = std::make_unique<CvodesSession>(ctx, options, own.data(), own.size(), part_rhs, &ps);
+      // Parts are small (a joint: 20-26 states): dense LU with the compiled kernels.
+      cv->set_linear_solver(LinearSystem::Dense, 0, 0, options.jacobian == JacobianKind::AutoDiff ? part_jac : nullptr);
+      ps.session = std::move(cv);
+    }
     std::vector<int> dirs;
     for (size_t r : ps.roots) dirs.push_back((*run.roots)[r].direction);
     ps.session->init_roots(dirs, part_roots);
@@ -289,13 +292,13 @@ double Partitioned::advance(CommandSchedule& s) {
   const bool too_much_work = ++ps.steps_since_output > options_.max_steps;
   if (flag_ < 0 || too_much_work) {
     std::ostringstream os;
-    os << "CVODES failed at t = " << tret << " ms in part " << ps.name << ": "
-       << (too_much_work ? "CV_TOO_MUCH_WORK" : cvodes_flag_name(flag_))
+    os << ps.session->package() << " failed at t = " << tret << " ms in part " << ps.name << ": "
+       << (too_much_work ? "CV_TOO_MUCH_WORK" : ps.session->flag_name(flag_))
        << " " << failure_advice(options_, true);
     throw SolverError(os.str());
   }
   if (flag_ == CV_TSTOP_RETURN) ps.t = s.next_stop();
-  else CVodeGetCurrentTime(ps.session->mem(), &ps.t);
+  else ps.t = ps.session->current_time();
   ps.update_polynomial();
   take_roots(ps, tret);
   return ps.t;
@@ -309,7 +312,7 @@ void Partitioned::take_roots(PartSolver& ps, double tret) {
   const size_t n = model_.num_states();
   for (int f = flag_; f == CV_ROOT_RETURN;) {
     found_.assign(ps.roots.size(), 0);
-    check_cvodes(CVodeGetRootInfo(ps.session->mem(), found_.data()), "CVodeGetRootInfo");
+    ps.session->root_info(found_.data());
     for (size_t r = 0; r < ps.roots.size(); ++r) {
       if (!found_[r]) continue;
       Event e;
@@ -343,10 +346,8 @@ void Partitioned::handle_events(CommandSchedule& s) {
 // Writes part `ps`'s states at time t (within its last step) into the full-size state `row`.
 void Partitioned::write_states(PartSolver& ps, double t, double* row) const {
   N_Vector tmp = ps.session->work();
-  if (CVodeGetDky(ps.session->mem(), t, 0, tmp) < 0) {  // the scheduling guarantees t is in the last step
-    double tn = 0.0, hu = 0.0;
-    CVodeGetCurrentTime(ps.session->mem(), &tn);
-    CVodeGetLastStep(ps.session->mem(), &hu);
+  if (ps.session->dky(t, 0, tmp) < 0) {  // the scheduling guarantees t is in the last step
+    const double tn = ps.session->current_time(), hu = ps.session->last_step();
     std::ostringstream os;
     os << "internal: part " << ps.name << " cannot interpolate at t = " << t << " ms (last step " << tn - hu
        << " .. " << tn << " ms); set [simulation] partitioned = false";

@@ -15,6 +15,7 @@
 #include "common/error.hpp"
 #include "solver/command_schedule.hpp"
 #include "solver/cvodes_session.hpp"
+#include "solver/erk_session.hpp"
 #include "solver/partitioned_simulator.hpp"
 #include "solver/run_loop.hpp"
 
@@ -316,7 +317,7 @@ void init_sensitivities(CvodesSession& session, const OdeModel& model, const std
 class WholeSystem {
  public:
   WholeSystem(const OdeModel& model, const SolverOptions& options, const CommandSchedule& schedule,
-              CvodesSession& session, CallbackData& d, const std::vector<double>& output_times,
+              IntegratorSession& session, CallbackData& d, const std::vector<double>& output_times,
               size_t n_caller_roots, SolveResult& res)
       : model_(model), options_(options), schedule_(schedule), session_(session), d_(d),
         output_times_(output_times), n_caller_roots_(n_caller_roots), res_(res), ns_(d.sens_params.size()),
@@ -357,7 +358,7 @@ class WholeSystem {
   const OdeModel& model_;
   const SolverOptions& options_;
   const CommandSchedule& schedule_;
-  CvodesSession& session_;
+  IntegratorSession& session_;
   CallbackData& d_;
   const std::vector<double>& output_times_;
   const size_t n_caller_roots_;
@@ -374,7 +375,7 @@ double WholeSystem::advance(CommandSchedule&) {
   flag_ = session_.advance(output_times_[k_out_], &t_, CV_NORMAL);
   if (flag_ < 0) {
     std::ostringstream os;
-    os << "CVODES failed at t = " << t_ << " ms: " << cvodes_flag_name(flag_)
+    os << session_.package() << " failed at t = " << t_ << " ms: " << session_.flag_name(flag_)
        << " " << failure_advice(options_, false);
     throw SolverError(os.str());
   }
@@ -386,7 +387,7 @@ double WholeSystem::advance(CommandSchedule&) {
 
 void WholeSystem::handle_events(CommandSchedule& schedule) {
   if (flag_ != CV_ROOT_RETURN) return;
-  check_cvodes(CVodeGetRootInfo(session_.mem(), rootsfound_.data()), "CVodeGetRootInfo");
+  session_.root_info(rootsfound_.data());
   model_.rhs(t_, N_VGetArrayPointer(session_.y()), schedule.p().data(), ydot_.data());
   std::vector<double> dtau_now(ns_, 0.0);  // d tau / dp of commands triggered at this event
   bool restart_now = false;
@@ -499,9 +500,19 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
 
   SundialsContext ctx;
   const std::vector<double> y0 = model_.initial_state(schedule.p());
-  CvodesSession session(ctx.get(), options_, y0.data(), d.n, rhs_cb, &d);
-  attach_linear_solver(session, d, model_, options_, y0, ns);
-  if (ns > 0) init_sensitivities(session, model_, schedule.p(), sens_params);
+  std::unique_ptr<IntegratorSession> session_owner;
+  if (is_explicit_rk(options_.integrator) && ns == 0) {
+    session_owner = std::make_unique<ErkSession>(ctx.get(), options_, y0.data(), d.n, rhs_cb, &d);
+  } else {
+    // Sensitivities run on CVODES BDF whatever integrator plain runs use (docs/sensitivity.md).
+    SolverOptions cvodes_options = options_;
+    if (is_explicit_rk(cvodes_options.integrator)) cvodes_options.integrator = IntegratorKind::Bdf;
+    auto cv = std::make_unique<CvodesSession>(ctx.get(), cvodes_options, y0.data(), d.n, rhs_cb, &d);
+    attach_linear_solver(*cv, d, model_, cvodes_options, y0, ns);
+    if (ns > 0) init_sensitivities(*cv, model_, schedule.p(), sens_params);
+    session_owner = std::move(cv);
+  }
+  IntegratorSession& session = *session_owner;
   std::vector<int> dirs;
   for (const auto& r : all_roots) dirs.push_back(r.direction);
   session.init_roots(dirs, root_cb);

@@ -22,9 +22,13 @@ enum class SensitivityMethod { Staggered, Simultaneous };
 // Sensitivity right-hand sides J s_j + df/dp_j: all parameters at once in Jet<8> chunks (one
 // model evaluation per 8 parameters) or one Jet<1> evaluation per parameter.
 enum class SensitivityRhs { Batched, PerParameter };
-// BDF + Newton (stiff) or Adams-Moulton + fixed-point iteration (non-stiff: no Jacobian, no
-// linear solves). Chosen by measurement per model (docs/benchmarks.md).
-enum class IntegratorKind { Bdf, Adams };
+// CVODES BDF + Newton (stiff) or Adams-Moulton + fixed-point iteration (non-stiff: no
+// Jacobian, no linear solves), or an explicit adaptive Runge-Kutta pair of ARKODE's ERKStep
+// (Bogacki-Shampine 3(2), Dormand-Prince 5(4), Verner 6(5), Fehlberg 8(7)): no Jacobian, no
+// linear solves, a few right-hand sides per step. Chosen by measurement per model
+// (docs/benchmarks.md, "Method study"); sensitivities always run on CVODES BDF.
+enum class IntegratorKind { Bdf, Adams, ErkBs3, ErkDp5, ErkVerner65, ErkFehlberg78 };
+inline bool is_explicit_rk(IntegratorKind k) { return k != IntegratorKind::Bdf && k != IntegratorKind::Adams; }
 enum class VectorKernels { Phasmid, Sundials };
 enum class Partitioning { Auto, On, Off };
 

@@ -11,6 +11,7 @@
 #include "solver/command_schedule.hpp"
 #include "solver/cvodes_session.hpp"
 #include "../rising_trigger.hpp"
+#include "session_checks.hpp"
 
 using namespace phasmid;
 
@@ -142,12 +143,8 @@ TEST(CvodesSession, DecayMatchesTheClosedFormAcrossARestart) {
   const double y0 = 3.0;
   solver::CvodesSession session(ctx.get(), so, &y0, 1, rhs, &k_data);
   session.set_linear_solver(solver::LinearSystem::Dense, 0, 0, nullptr);
-  session.set_stop_time(50.0);
   double t = 0.0;
-  EXPECT_EQ(session.advance(100.0, &t, CV_NORMAL), CV_TSTOP_RETURN);
-  EXPECT_DOUBLE_EQ(t, 50.0);
-  const long steps_before = session.total_steps();
-  EXPECT_GT(steps_before, 0);
+  const long steps_before = test::advance_to_stop_at_50(session, &t);
   session.restart(t);
   EXPECT_EQ(session.total_steps(), steps_before);  // counted over the restart
   session.set_stop_time(100.0);

@@ -26,7 +26,9 @@ ModelKind three_legs_kind() {
               throw Error(s.where("coupling_gate") + ": " + e.what());
             }
             try {
-              return std::make_unique<OdeScenario>(model::build_three_leg_model(o));
+              // Rate motoneurons: BDF per joint needs 1e-7 (1e-6 misses by 0.02 ms).
+              return std::make_unique<OdeScenario>(model::build_three_leg_model(o),
+                                                   kinds::network_defaults(o.motoneuron, 1e-7));
             } catch (const Error& e) {
               throw Error(s.where("gait") + ": " + e.what());
             }

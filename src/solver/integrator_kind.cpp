@@ -1,0 +1,32 @@
+#include "solver/integrator_kind.hpp"
+
+#include <utility>
+
+namespace phasmid::solver {
+
+namespace {
+const std::pair<IntegratorKind, const char*> kNames[] = {
+    {IntegratorKind::Bdf, "cvodes_bdf"},          {IntegratorKind::Adams, "cvodes_adams"},
+    {IntegratorKind::ErkBs3, "erk_bs3"},          {IntegratorKind::ErkDp5, "erk_dp5"},
+    {IntegratorKind::ErkVerner65, "erk_verner65"}, {IntegratorKind::ErkFehlberg78, "erk_fehlberg78"}};
+}  // namespace
+
+std::optional<IntegratorKind> integrator_from_name(const std::string& name) {
+  for (const auto& [kind, n] : kNames)
+    if (name == n) return kind;
+  return std::nullopt;
+}
+
+std::string integrator_name(IntegratorKind kind) {
+  for (const auto& [k, n] : kNames)
+    if (k == kind) return n;
+  return "unknown";
+}
+
+std::string integrator_names() {
+  std::string s;
+  for (const auto& [kind, n] : kNames) s += (s.empty() ? "\"" : ", \"") + std::string(n) + "\"";
+  return s;
+}
+
+}  // namespace phasmid::solver

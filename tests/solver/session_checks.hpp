@@ -1,0 +1,22 @@
+#pragma once
+// A check both integrator sessions share (tests/solver/test_command_schedule.cpp for CVODES,
+// test_erk_session.cpp for ERKStep): integrating towards 100 ms, the session stops at its stop
+// time, 50 ms, exactly.
+#include <gtest/gtest.h>
+
+#include "solver/integrator_session.hpp"
+
+namespace phasmid::test {
+
+// Sets the stop at 50 ms and advances there; *t is the time reached. Returns the steps taken.
+inline long advance_to_stop_at_50(solver::IntegratorSession& session, double* t) {
+  session.set_stop_time(50.0);
+  *t = 0.0;
+  EXPECT_EQ(session.advance(100.0, t, CV_NORMAL), CV_TSTOP_RETURN);
+  EXPECT_DOUBLE_EQ(*t, 50.0);
+  const long steps = session.total_steps();
+  EXPECT_GT(steps, 0);
+  return steps;
+}
+
+}  // namespace phasmid::test

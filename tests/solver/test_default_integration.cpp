@@ -1,0 +1,61 @@
+// The model kinds' default integration settings (OdeScenario defaults, chosen by
+// bench/method_study.sh; docs/benchmarks.md "Method study") against a tight-tolerance
+// reference, CVODES BDF at rtol = atol = 1e-10 as one system: every feature in ms within
+// 0.01 ms, every one in deg within 0.01 deg. The single FTi joint as shipped
+// (configs/single_joint_fti.toml, Dormand-Prince 5(4) at 1e-6, 9 s) and the three legs with
+// rate motoneurons at their kind's default (BDF per joint at 1e-7; 5 s, 2.5 s discarded).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "build_info.hpp"
+#include "config/config.hpp"
+#include "scenario/scenario.hpp"
+
+using namespace phasmid;
+
+namespace {
+
+void expect_default_matches_reference(const config::Config& cfg, const char* what) {
+  auto scenario = config::build_scenario(cfg);
+  const config::SimulationSettings defaults = config::simulation_settings(cfg, scenario.get());
+  config::SimulationSettings ref = defaults;
+  ref.solver.integrator = solver::IntegratorKind::Bdf;
+  ref.solver.rtol = ref.solver.atol = 1e-10;
+  ref.solver.partitioning = solver::Partitioning::Off;
+  const auto p = scenario->parameters().values();
+  std::map<std::string, double> want;
+  for (const auto& f : scenario->evaluate_features(p, ref)) want[f.name] = f.value;
+  size_t gated = 0;
+  for (const auto& f : scenario->evaluate_features(p, defaults)) {
+    if (f.unit != "ms" && f.unit != "deg") continue;
+    ASSERT_TRUE(want.count(f.name)) << f.name;
+    if (std::isnan(want[f.name])) continue;
+    EXPECT_NEAR(f.value, want[f.name], 0.01) << what << ": " << f.name << " (" << f.unit << ")";
+    ++gated;
+  }
+  std::printf("%s: %s at rtol %g, %zu features in ms and deg within 0.01 of BDF 1e-10\n", what,
+              defaults.solver.integrator == solver::IntegratorKind::Bdf ? "CVODES BDF" : "ERKStep", defaults.solver.rtol,
+              gated);
+  EXPECT_GE(gated, 4u);
+}
+
+}  // namespace
+
+TEST(DefaultIntegration, SingleJointAsShippedMatchesTheTightReference) {
+  auto cfg = config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/single_joint_fti.toml");
+  auto scenario = config::build_scenario(cfg);
+  EXPECT_EQ(config::simulation_settings(cfg, scenario.get()).solver.integrator, solver::IntegratorKind::ErkDp5);
+  expect_default_matches_reference(cfg, "single joint (spiking)");
+}
+
+TEST(DefaultIntegration, RateThreeLegsMatchTheTightReference) {
+  auto cfg = config::parse_config(
+      "[model]\ntype = \"three_legs\"\ngait = \"tetrapod\"\nmotoneuron = \"rate\"\n"
+      "[simulation]\nt_end_ms = 5000\ndiscard_ms = 2500\n",
+      "three_legs_rate.toml");
+  expect_default_matches_reference(cfg, "three legs (rate)");
+}
