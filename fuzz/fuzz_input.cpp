@@ -7,6 +7,16 @@
 #include <fstream>
 
 namespace phasmid::fuzz {
+namespace {
+std::filesystem::path& scratch_dir() {
+  static std::filesystem::path dir;
+  return dir;
+}
+void remove_scratch_dir() {
+  std::error_code ec;
+  std::filesystem::remove_all(scratch_dir(), ec);
+}
+}  // namespace
 
 std::string scratch_path(const std::string& name) {
   static const std::filesystem::path dir = [] {
@@ -14,6 +24,8 @@ std::string scratch_path(const std::string& name) {
     std::filesystem::path d = std::filesystem::path(tmp && *tmp ? tmp : "/tmp") /
                               ("phasmid-fuzz-" + std::to_string(::getpid()));
     std::filesystem::create_directories(d);
+    scratch_dir() = d;
+    std::atexit(remove_scratch_dir);  // a run that ends normally leaves nothing behind
     return d;
   }();
   return (dir / name).string();

@@ -14,7 +14,8 @@ inline std::string as_text(const std::uint8_t* data, std::size_t size) {
   return std::string(reinterpret_cast<const char*>(data), size);
 }
 
-// A private directory for this process (created once, under $TMPDIR or /tmp), and a path in it.
+// A private directory for this process (created once, under $TMPDIR or /tmp, removed at
+// exit), and a path in it.
 std::string scratch_path(const std::string& name);
 // Writes `bytes` to scratch_path(name) and returns that path.
 std::string write_scratch(const std::string& name, const std::uint8_t* data, std::size_t size);
