@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <string>
 
+#include "common/error.hpp"
+
 namespace phasmid::fuzz {
 
 inline std::string as_text(const std::uint8_t* data, std::size_t size) {
@@ -19,5 +21,15 @@ inline std::string as_text(const std::uint8_t* data, std::size_t size) {
 std::string scratch_path(const std::string& name);
 // Writes `bytes` to scratch_path(name) and returns that path.
 std::string write_scratch(const std::string& name, const std::uint8_t* data, std::size_t size);
+
+// Runs f; a phasmid::Error is the reader refusing the input, which is fine. Other exceptions
+// pass through and fail the target.
+template <class F>
+void attempt(F&& f) {
+  try {
+    f();
+  } catch (const phasmid::Error&) {
+  }
+}
 
 }  // namespace phasmid::fuzz

@@ -2,7 +2,6 @@
 // scenario ([model], [parameters], [[triggers]]), [simulation], the [sweep] design and its
 // scenario factory, the [fit] problem and, for ODE kinds, [sensitivity]. Nothing is run.
 // Each step is tried on its own, so a config broken for one verb still reaches the others.
-#include "common/error.hpp"
 #include "config/config.hpp"
 #include "config/sensitivity_section.hpp"
 #include "config/sweep_inputs.hpp"
@@ -13,16 +12,6 @@
 #include "scenario/scenario.hpp"
 #include "sweep/sweep_runner.hpp"
 
-namespace {
-template <class F>
-void attempt(F&& f) {
-  try {
-    f();
-  } catch (const phasmid::Error&) {
-  }
-}
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace phasmid;
   config::Config cfg;
@@ -32,14 +21,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   std::unique_ptr<scenario::Scenario> sc;
-  attempt([&] { sc = config::build_scenario(cfg); });
+  fuzz::attempt([&] { sc = config::build_scenario(cfg); });
   if (!sc) return 0;
-  attempt([&] {
+  fuzz::attempt([&] {
     const config::SimulationSettings s = config::simulation_settings(cfg, sc.get());
     if (const model::OdeModel* m = sc->ode_model()) config::sensitivity_job(cfg, *m, s);
   });
-  attempt([&] { config::sweep_inputs(cfg, {}); });
-  attempt([&] {
+  fuzz::attempt([&] { config::sweep_inputs(cfg, {}); });
+  fuzz::attempt([&] {
     fit::FitSpec spec;
     sc->make_fit(cfg, fit::FitOverrides{}, spec);
   });

@@ -3,7 +3,6 @@
 // /sweep/ranges readers) and a shard as `merge` reads it (merged into a scratch output).
 #include <cstdio>
 
-#include "common/error.hpp"
 #include "features/features.hpp"
 #include "fuzz_input.hpp"
 #include "io/h5_file.hpp"
@@ -11,27 +10,17 @@
 #include "sweep/ranges.hpp"
 #include "sweep/sweep_shard.hpp"
 
-namespace {
-template <class F>
-void attempt(F&& f) {
-  try {
-    f();
-  } catch (const phasmid::Error&) {
-  }
-}
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace phasmid;
   const std::string path = fuzz::write_scratch("input.h5", data, size);
-  attempt([&] { report::extract(path); });
-  attempt([&] {
+  fuzz::attempt([&] { report::extract(path); });
+  fuzz::attempt([&] {
     io::H5Reader in(path);
     features::read_features_h5(in);
     sweep::read_ranges_h5(in);
   });
   const std::string merged = fuzz::scratch_path("merged.h5");
-  attempt([&] { sweep::merge_shards({path}, merged, "fuzz"); });
+  fuzz::attempt([&] { sweep::merge_shards({path}, merged, "fuzz"); });
   std::remove(merged.c_str());
   return 0;
 }
