@@ -37,9 +37,10 @@ for t in $TARGETS; do
   else
     fail=1
     mkdir -p "fuzz/regressions/$t"
-    cp "$work"/artifacts/* "fuzz/regressions/$t/" 2>/dev/null || true
+    # slow-unit-* are only slow (under -timeout): not kept
+    cp "$work"/artifacts/{crash,leak,timeout,oom}-* "fuzz/regressions/$t/" 2>/dev/null || true
     echo "run_fuzz: $t FAILED after $(( $(date +%s) - start )) s; input(s) kept in fuzz/regressions/$t/:" \
-         "$(ls "$work/artifacts" | tr '\n' ' ')" >&2
+         "$(ls "$work/artifacts" | grep -v "^slow-unit" | tr '\n' ' ')" >&2
     grep -m1 -E 'ERROR: |runtime error|==ERROR|deadly signal|uncaught exception|terminate called' "$work/log" >&2 || true
     echo "run_fuzz: full log in $work/log" >&2
   fi
