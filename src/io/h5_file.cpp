@@ -258,9 +258,7 @@ std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
   herr_t st = n ? H5Dread(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data()) : 0;
   std::vector<std::string> out;
   for (char* p : raw) out.emplace_back(p ? p : "");
-  // Also after a failed read: the strings converted before the failure are allocated (the
-  // others are still null, which reclaim skips).
-  if (n) H5Dvlen_reclaim(type, space, H5P_DEFAULT, raw.data());
+  if (n && st >= 0) H5Dvlen_reclaim(type, space, H5P_DEFAULT, raw.data());
   H5Tclose(type);
   H5Sclose(space);
   H5Dclose(ds);
@@ -287,7 +285,7 @@ std::string H5Reader::read_string_attribute(const std::string& object_path, cons
   char* p = nullptr;
   herr_t st = H5Aread(attr, type, &p);
   std::string out = p ? p : "";
-  if (p) H5free_memory(p);
+  if (st >= 0 && p) H5free_memory(p);
   H5Tclose(type);
   H5Aclose(attr);
   H5Oclose(obj);
