@@ -13,8 +13,8 @@ TARGETS=${FUZZ_TARGETS:-$(ls fuzz/targets | sed 's/\.cpp$//')}
 source scripts/sanitizer_build.sh
 configure_sanitizer_build
 start=$(date +%s)
-cmake --build "$SANITIZER_BUILD" -j"$(nproc)" --target $(printf 'fuzz_%s ' $TARGETS) >"$SANITIZER_BUILD.fuzz.log" 2>&1 ||
-  { tail -30 "$SANITIZER_BUILD.fuzz.log"; exit 1; }
+cmake --build "$SANITIZER_BUILD" -j"$(nproc)" --target $(printf 'fuzz_%s ' $TARGETS) >"$SANITIZER_BUILD/fuzz-build.log" 2>&1 ||
+  { tail -30 "$SANITIZER_BUILD/fuzz-build.log"; exit 1; }
 echo "run_fuzz: build $(( $(date +%s) - start )) s"
 
 export OMP_NUM_THREADS=1

@@ -28,7 +28,7 @@ for src in $(find tests -name 'test_*.cpp' | sort); do
 done
 targets+=(fuzz_replay_all)
 start=$(date +%s)
-cmake --build "$B" -j"$(nproc)" --target "${targets[@]}" >"$B.log" 2>&1 || { tail -30 "$B.log"; exit 1; }
+cmake --build "$B" -j"$(nproc)" --target "${targets[@]}" >"$B/build.log" 2>&1 || { tail -30 "$B/build.log"; exit 1; }
 echo "run_sanitizers: build (${#targets[@]} targets) $(( $(date +%s) - start )) s"
 
 # Full allocation stacks: libhdf5 has no frame pointers, and its suppression in
