@@ -2,9 +2,9 @@
 # instrumented build both use (docs/reliability.md, "Sanitizers"). clang++ with
 # AddressSanitizer, UndefinedBehaviorSanitizer (whose clang group includes
 # float-cast-overflow) and libFuzzer's coverage instrumentation, so the fuzz targets and the
-# sanitizer test suite share one compilation of the library. MPI off: Open MPI's runtime
-# leaks at exit and its shared-memory transport trips AddressSanitizer; the Release suite
-# tests the MPI paths (script_mpi_*).
+# sanitizer test suite share one compilation of the library. MPI off: Open MPI's runtime is
+# uninstrumented and keeps allocations until exit (suppressions of its internals); the Release
+# suite tests the MPI paths (script_mpi_*).
 SANITIZER_BUILD=build-asan
 
 configure_sanitizer_build() {
