@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (fuzz/, clang++ with AddressSanitizer and UBSan) in
-# build-asan (scripts/sanitizer_build.sh) and runs each for SECONDS (default 60), starting from its seed corpus
-# fuzz/corpus/<target>/. A crash, leak, timeout or out-of-memory is copied into
-# fuzz/regressions/<target>/ (replayed from then on by ctest fuzz_replay_<target>) and the
-# script fails after running the remaining targets. docs/reliability.md, "Fuzzing".
+# Builds the libFuzzer targets (fuzz/, clang++ with AddressSanitizer and UBSan) in build-asan
+# (scripts/sanitizer_build.sh) and runs each for SECONDS (default 60), starting from its seed
+# corpus fuzz/corpus/<target>/. A crash, leak, timeout or out-of-memory input is copied into
+# fuzz/regressions/<target>/ (once committed with its fix, ctest fuzz_replay_<target> replays
+# it) and the script fails after running the remaining targets. docs/reliability.md, "Fuzzing".
 # Usage: scripts/run_fuzz.sh [SECONDS]; FUZZ_TARGETS="config journal" runs only those.
 set -euo pipefail
 cd "$(dirname "$0")/.."
