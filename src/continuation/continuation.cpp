@@ -315,6 +315,7 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
   Branch br;
   br.parameter = o.parameter;
   br.parameter_unit = model.parameters().at(param).unit;
+  br.section = o.shooting.section;
   br.feature_names = o.features;
   if (br.feature_names.empty())
     for (const auto& f : run0.features) br.feature_names.push_back(f.name);

@@ -62,6 +62,7 @@ struct Branch {
   std::vector<std::string> feature_names, feature_units;
   std::vector<BranchPoint> points;
   std::vector<SpecialPoint> special;  // in branch order; the last one says how the branch ended
+  solver::RootSpec section{0, 0.0, 0};
   long shots = 0;         // integrations with sensitivities (Newton iterations, all tries)
   double seconds = 0.0;   // wall time
 };
