@@ -48,10 +48,14 @@ Eigen::MatrixXd jacobian(const Context& c, const Shot& s, const Vec& row) {
   return J;
 }
 
-// Newton from z on the shooting equations plus row . (z - z_pred) = 0.
+// Newton from z on the shooting equations plus row . (z - z_pred) = 0. Damped: a step that
+// raises the residual is halved (up to four times) before the next linearisation.
 std::optional<Solved> correct(Context& c, Vec z, const Vec& z_pred, const Vec& row) {
   const ShootingOptions& so = c.o.shooting;
   const size_t n = c.n, sec = so.section.state;
+  Vec z_prev = z;
+  double prev = INFINITY;
+  int halvings = 0;
   for (int it = 0;; ++it) {
     Shot s;
     try {
@@ -62,9 +66,15 @@ std::optional<Solved> correct(Context& c, Vec z, const Vec& z_pred, const Vec& r
       return std::nullopt;
     }
     const double res = s.max_residual();
-    if (!std::isfinite(res)) return std::nullopt;
-    // Integration errors reach y(T) amplified by Phi (unstable cycles): the tolerance scales with |Phi|.
-    const double tol = so.tolerance * std::max(1.0, s.monodromy.cwiseAbs().rowwise().sum().maxCoeff());
+    if (!std::isfinite(res) || (res > prev && halvings < 4)) {
+      if (it >= so.max_iterations || halvings >= 4) return std::nullopt;
+      z = z_prev + 0.5 * (z - z_prev);
+      ++halvings;
+      continue;
+    }
+    halvings = 0;
+    // Integration errors reach y(T) amplified by the largest multiplier (unstable cycles).
+    const double tol = so.tolerance * growth(s.monodromy);
     if (res < tol && std::abs(z[sec] - so.section.level) < so.tolerance) {
       const double dir = so.section.direction == 0 ? 1.0 : so.section.direction;
       const double rate = so.section.direction == 0 ? std::abs(s.f_end[sec]) : dir * s.f_end[sec];
@@ -76,8 +86,10 @@ std::optional<Solved> correct(Context& c, Vec z, const Vec& z_pred, const Vec& r
     r.head(n) = s.residual;
     r[n] = z[sec] - so.section.level;
     r[n + 1] = row.dot(z - z_pred);
+    z_prev = z;
+    prev = res;
     z -= jacobian(c, s, row).colPivHouseholderQr().solve(r);
-    if (!(z[n] > 0.0)) return std::nullopt;
+    if (!(z[n] > 0.0)) z[n] = 0.5 * z_prev[n];
   }
 }
 
@@ -241,6 +253,17 @@ SpecialPoint hopf_end(const std::vector<BranchPoint>& pts, const std::string& wh
   return sp;
 }
 
+// The branch runs up a vertical asymptote in (lambda, T): over the last three steps the
+// period grows while the branch is nearly parallel to the period axis (|d lambda/ds| < 1e-2),
+// as on the approach to a homoclinic orbit or a saddle-node on the cycle, where T ~ -ln|lambda - lambda_c|
+// or |lambda - lambda_c|^(-1/2) would take ever smaller parameter steps to follow.
+bool period_runs_away(const std::vector<BranchPoint>& pts) {
+  if (pts.size() < 4) return false;
+  for (size_t k = pts.size() - 3; k < pts.size(); ++k)
+    if (!(pts[k].period_ms > pts[k - 1].period_ms) || !(std::abs(pts[k].tangent_parameter) < 1e-2)) return false;
+  return true;
+}
+
 // How a branch ends where no step down to min_step converges.
 SpecialPoint failure_end(const Context& c, const std::vector<BranchPoint>& pts, double amax, double t_first) {
   const BranchPoint& b = pts.back();
@@ -268,13 +291,15 @@ ContinuationOptions checked(const model::OdeModel& model, ContinuationOptions o)
 }
 
 // Weights: lambda in its unit, T relative to the first period, each state relative to its
-// range over the first cycle (1 where constant), all across the whole parameter range.
+// range over the first cycle (at least 1 % of the largest range), all across the parameter range.
 Vec weights(const Context& c, const Vec& z0, const CycleRun& first) {
   const size_t n = c.n;
   const double range = std::abs(c.o.end - c.o.start);
+  // A state that barely moves would otherwise weigh its integration noise into every step.
+  const double floor = 1e-2 * *std::max_element(first.ranges.begin(), first.ranges.end());
   Vec w(n + 2);
   for (size_t i = 0; i < n; ++i)
-    w[i] = range / ((first.ranges[i] > 0 ? first.ranges[i] : 1.0) * std::sqrt(static_cast<double>(n)));
+    w[i] = range / (std::max({first.ranges[i], floor, 1e-300}) * std::sqrt(static_cast<double>(n)));
   w[n] = range / z0[n];
   w[n + 1] = 1.0;
   return w;
@@ -376,9 +401,9 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
     if (cur->iterations <= 3) ds = std::min(ds * 1.5, o.max_step);
     else if (cur->iterations > 6) ds = std::max(ds * 0.6, o.min_step);
     amax = std::max(amax, last.amplitude);
-    if (last.period_ms > o.max_period_factor * t_first) {
+    if (last.period_ms > o.max_period_factor * t_first || period_runs_away(br.points)) {
       br.special.push_back({br.points.size() - 1, "period_unbounded", last.parameter, last.period_ms,
-                            "the period exceeded max_period_factor times the first"});
+                            "the period grows while the parameter stalls (or exceeds max_period_factor times the first)"});
       break;
     }
     if (last.amplitude < o.hopf_amplitude_fraction * amax) {

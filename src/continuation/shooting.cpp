@@ -56,7 +56,7 @@ Cycle newton_fixed_parameter(const model::OdeModel& model, const std::vector<dou
     Shot s = shoot(model, p, kNoParameter, c, o.solver);
     report.iterations = it;
     report.residual = s.max_residual();
-    const double tol = o.tolerance * std::max(1.0, s.monodromy.cwiseAbs().rowwise().sum().maxCoeff());
+    const double tol = o.tolerance * growth(s.monodromy);
     if (report.residual < tol && std::abs(c.y0[sec] - o.section.level) < o.tolerance) {
       report.converged = true;
       if (shot_out) *shot_out = std::move(s);
@@ -91,6 +91,11 @@ Cycle find_cycle(const model::OdeModel& model, const std::vector<double>& p, con
     throw Error("Newton shooting did not converge from the cycle after the transient (residual " +
                 std::to_string(report.residual) + " after " + std::to_string(report.iterations) + " iterations)");
   return c;
+}
+
+double growth(const Eigen::MatrixXd& monodromy) {
+  const auto mu = multipliers(monodromy);
+  return std::max(1.0, mu.empty() ? 0.0 : std::abs(mu.front()));
 }
 
 std::vector<std::complex<double>> multipliers(const Eigen::MatrixXd& monodromy) {

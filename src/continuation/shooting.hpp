@@ -36,7 +36,7 @@ struct ShootingOptions {
   solver::RootSpec section{0, 0.0, +1};  // the cycle starts where y[state] crosses level in direction
   double transient_ms = 5000.0;   // integrated before the first section crossing is taken
   double max_period_ms = 2000.0;  // search window for the first period after the transient
-  double tolerance = 1e-7;        // converged when max_i |y_i(T) - y0_i| < tolerance * max(1, |Phi|_inf) (state units)
+  double tolerance = 1e-7;        // converged when max_i |y_i(T) - y0_i| < tolerance * growth(Phi) (state units)
   int max_iterations = 12;
   solver::SolverOptions solver;
 };
@@ -77,6 +77,10 @@ Cycle newton_fixed_parameter(const model::OdeModel& model, const std::vector<dou
 // run has no two crossings after the transient or Newton does not converge.
 Cycle find_cycle(const model::OdeModel& model, const std::vector<double>& p, const ShootingOptions& options,
                  NewtonReport& report, Shot* shot = nullptr);
+
+// max(1, largest |multiplier|): how much an integration error at the start of a cycle can grow
+// by its end, the factor on ShootingOptions::tolerance.
+double growth(const Eigen::MatrixXd& monodromy);
 
 // Floquet multipliers (eigenvalues of the monodromy) by decreasing modulus.
 std::vector<std::complex<double>> multipliers(const Eigen::MatrixXd& monodromy);

@@ -14,6 +14,7 @@
 #include "common/embedded.hpp"
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
+#include "report/continuation_panels.hpp"
 #include "sweep/ranges.hpp"
 
 namespace phasmid::report {
@@ -587,6 +588,8 @@ nlohmann::json extract(const std::string& h5_path, std::size_t max_points) {
         extract_fit(r, out, max_points);
       else if (top == "sweep")
         extract_sweep(r, out);
+      else if (top == "continuation")
+        extract_continuation(r, out);
       else
         note_ignored(out, p);
     } catch (const Error& e) {
