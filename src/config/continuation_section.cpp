@@ -57,6 +57,23 @@ void read_features(const Config& cfg, const toml::node& node, const model::OdeMo
   }
 }
 
+// [continuation.linked]: "<parameter>" = [value at start, value at end], one per parameter
+// moved with the continuation parameter.
+void read_linked(const Config& cfg, const toml::node& node, const model::OdeModel& m, continuation::ContinuationOptions& o) {
+  const toml::table* t = node.as_table();
+  if (!t) throw Error(where(cfg, node) + ": [continuation] linked must be a table of \"<parameter>\" = [from, to]");
+  for (const auto& [name, value] : flatten(*t)) {
+    if (!m.parameters().contains(name)) {
+      const std::string near = nearest(name, m.parameters().names());
+      throw Error(where(cfg, *value) + ": [continuation.linked] unknown parameter '" + name + "'" +
+                  (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+    }
+    const toml::array* a = value->as_array();
+    if (!a || a->size() != 2) throw Error(where(cfg, *value) + ": [continuation.linked] " + name + " must be [from, to]");
+    o.linked.push_back({name, number(cfg, *a->get(0), name), number(cfg, *a->get(1), name)});
+  }
+}
+
 }  // namespace
 
 continuation::ContinuationOptions continuation_options(const Config& cfg, const model::OdeModel& m,
@@ -66,7 +83,7 @@ continuation::ContinuationOptions continuation_options(const Config& cfg, const 
   check_keys(cfg, *t, "continuation",
              {"parameter", "range", "initial_step", "min_step", "max_step", "max_points", "section", "section_state",
               "section_level", "section_direction", "transient_ms", "max_period_ms", "tolerance", "max_iterations",
-              "features", "feature_cycles", "max_period_factor", "hopf_amplitude_fraction", "locate_iterations"});
+              "features", "feature_cycles", "max_period_factor", "hopf_amplitude_fraction", "locate_iterations", "linked"});
   continuation::ContinuationOptions o;
   o.shooting.solver = sim.solver;
   o.shooting.solver.progress = false;
@@ -115,6 +132,7 @@ continuation::ContinuationOptions continuation_options(const Config& cfg, const 
   count("max_iterations", o.shooting.max_iterations);
   count("locate_iterations", o.locate_iterations);
   if (auto* n = t->get("features")) read_features(cfg, *n, m, o);
+  if (auto* n = t->get("linked")) read_linked(cfg, *n, m, o);
   if (!(o.shooting.tolerance > 0) || !(o.shooting.transient_ms >= 0) || !(o.shooting.max_period_ms > 0) ||
       !(o.feature_cycles >= 2))
     throw Error(where(cfg, *t) + ": [continuation] needs tolerance > 0, transient_ms >= 0, max_period_ms > 0, feature_cycles >= 2");

@@ -10,7 +10,8 @@ namespace phasmid::config {
 // max_points, section = "<leg>.liftoff" | "<leg>.touchdown" | "angle_max" or section_state,
 // section_level, section_direction = "rising" | "falling", transient_ms, max_period_ms,
 // tolerance, max_iterations, features = [names], feature_cycles, max_period_factor,
-// hopf_amplitude_fraction, locate_iterations) with the solver of `sim` ([simulation]).
+// hopf_amplitude_fraction, locate_iterations, and a table linked = { "<parameter>" = [from, to] }
+// of parameters moved with it) with the solver of `sim` ([simulation]).
 // Errors name file:line and the key; an Error naming the file if the section is missing.
 continuation::ContinuationOptions continuation_options(const Config& cfg, const model::OdeModel& model,
                                                        const SimulationSettings& sim);

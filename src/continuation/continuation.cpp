@@ -16,7 +16,9 @@ using Vec = Eigen::VectorXd;
 struct Context {
   const model::OdeModel& model;
   std::vector<double> p;
-  size_t param = 0, n = 0;
+  ParameterPath path;
+  double t0 = 0.0;  // model time of the cycles' section crossing
+  size_t n = 0;
   const ContinuationOptions& o;
   Vec w;  // arclength weights (W)
   long shots = 0;
@@ -32,8 +34,8 @@ struct Solved {
   int iterations = 0;
 };
 
-Cycle to_cycle(const Vec& z, size_t n) {
-  return {std::vector<double>(z.data(), z.data() + n), z[n], z[n + 1]};
+Cycle to_cycle(const Vec& z, size_t n, double t0) {
+  return {std::vector<double>(z.data(), z.data() + n), z[n], z[n + 1], t0};
 }
 
 // Newton's matrix: [Phi - I, f(y(T)), dy/dlambda; e_section; row].
@@ -59,7 +61,7 @@ std::optional<Solved> correct(Context& c, Vec z, const Vec& z_pred, const Vec& r
   for (int it = 0;; ++it) {
     Shot s;
     try {
-      s = shoot(c.model, c.p, c.param, to_cycle(z, n), so.solver);
+      s = shoot(c.model, c.p, c.path, to_cycle(z, n, c.t0), so.solver);
       ++c.shots;
     } catch (const Error&) {  // integration failure, tangential switch
       c.integration_failed = true;
@@ -119,8 +121,8 @@ struct CycleRun {
 CycleRun run_cycle(const Context& c, const Vec& z) {
   const size_t n = c.n;
   std::vector<double> p = c.p;
-  p[c.param] = z[n + 1];
-  CycleModel cm(c.model, std::vector<double>(z.data(), z.data() + n));
+  c.path.apply(p, z[n + 1]);
+  CycleModel cm(c.model, std::vector<double>(z.data(), z.data() + n), c.t0);
   const std::vector<double> pe = cm.extend(p);
   const double T = z[n];
   std::vector<double> times;
@@ -305,6 +307,21 @@ Vec weights(const Context& c, const Vec& z0, const CycleRun& first) {
   return w;
 }
 
+// The continuation parameter (slope 1) and the linked ones, at their values at lambda = start.
+ParameterPath path_of(const model::OdeModel& model, const ContinuationOptions& o) {
+  ParameterPath path;
+  path.start = o.start;
+  path.index = {model.parameters().index(o.parameter)};
+  path.base = {o.start};
+  path.slope = {1.0};
+  for (const auto& l : o.linked) {
+    path.index.push_back(model.parameters().index(l.name));
+    path.base.push_back(l.from);
+    path.slope.push_back((l.to - l.from) / (o.end - o.start));
+  }
+  return path;
+}
+
 }  // namespace
 
 const std::vector<std::pair<std::string, std::string>>& special_point_kinds() {
@@ -326,10 +343,11 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
   const auto t_start = std::chrono::steady_clock::now();
   const ContinuationOptions o = checked(model, opt);
   const size_t param = model.parameters().index(o.parameter), n = model.num_states();
-  p[param] = o.start;
-  Context c{model, p, param, n, o, Vec::Ones(n + 2)};
+  Context c{model, p, path_of(model, o), 0.0, n, o, Vec::Ones(n + 2)};
+  c.path.apply(c.p, o.start);
   NewtonReport rep;
-  const Cycle first = find_cycle(model, p, o.shooting, rep);
+  const Cycle first = find_cycle(model, c.p, o.shooting, rep);
+  c.t0 = first.t0;
   Vec z0(n + 2);
   for (size_t i = 0; i < n; ++i) z0[i] = first.y0[i];
   z0[n] = first.period_ms;

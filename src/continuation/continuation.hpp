@@ -26,6 +26,12 @@ namespace phasmid::continuation {
 struct ContinuationOptions {
   std::string parameter;  // the continuation parameter's name
   double start = 0.0, end = 0.0;  // range; the branch starts at `start` and heads for `end`
+  // Parameters moved with it, linearly: `from` at start, `to` at end (e.g. both LD drives).
+  struct Linked {
+    std::string name;
+    double from = 0.0, to = 0.0;
+  };
+  std::vector<Linked> linked;
   double initial_step = 0.0, min_step = 0.0, max_step = 0.0;  // arclength, in the parameter's unit
   int max_points = 100;
   std::vector<std::string> features;  // tracked features; empty: every feature the cycle gives

@@ -7,20 +7,20 @@
 
 namespace phasmid::continuation {
 
-CycleModel::CycleModel(const model::OdeModel& base, std::vector<double> y0)
-    : sensitivity::InitialValueModel(base, std::move(y0), 0.0) {
+CycleModel::CycleModel(const model::OdeModel& base, std::vector<double> y0, double t0)
+    : sensitivity::InitialValueModel(base, std::move(y0), t0) {
   structure_ = base.structure();
-  set_triggers(base.triggers());
+  if (t0 == 0.0) set_triggers(base.triggers());
 }
 
-Shot shoot(const model::OdeModel& model, std::vector<double> p, size_t param, const Cycle& cycle,
+Shot shoot(const model::OdeModel& model, std::vector<double> p, const ParameterPath& path, const Cycle& cycle,
            const solver::SolverOptions& solver) {
-  if (param != kNoParameter) p[param] = cycle.parameter;
-  CycleModel cm(model, cycle.y0);
+  path.apply(p, cycle.parameter);
+  CycleModel cm(model, cycle.y0, cycle.t0);
   const size_t n = model.num_states(), nb = cm.num_base_parameters();
   std::vector<size_t> sens;
   for (size_t i = 0; i < n; ++i) sens.push_back(nb + i);
-  if (param != kNoParameter) sens.push_back(param);
+  sens.insert(sens.end(), path.index.begin(), path.index.end());
   solver::SolverOptions so = solver;
   so.progress = false;
   so.sensitivities_at_outputs = true;
@@ -36,14 +36,13 @@ Shot shoot(const model::OdeModel& model, std::vector<double> p, size_t param, co
     s.residual[i] = y_end[i] - cycle.y0[i];
     for (size_t j = 0; j < n; ++j) s.monodromy(i, j) = r.sens(k, i, j) + (i == j ? 1.0 : 0.0);
   }
-  if (param != kNoParameter) {
-    s.dy_dparam.resize(n);
-    for (size_t i = 0; i < n; ++i) s.dy_dparam[i] = r.sens(k, i, n);
-  }
+  if (!path.index.empty()) s.dy_dparam = Eigen::VectorXd::Zero(n);
+  for (size_t j = 0; j < path.index.size(); ++j)
+    for (size_t i = 0; i < n; ++i) s.dy_dparam[i] += path.slope[j] * r.sens(k, i, n + j);
   // f at the end of the cycle, in the mode the run ended in (the commands it resolved).
   for (const auto& c : r.commands) pe[c.parameter] = c.t_ms;
   s.f_end.resize(n);
-  cm.rhs(cycle.period_ms, y_end.data(), pe.data(), s.f_end.data());
+  cm.rhs(cycle.period_ms, y_end.data(), pe.data(), s.f_end.data());  // InitialValueModel adds t0
   return s;
 }
 
@@ -53,7 +52,7 @@ Cycle newton_fixed_parameter(const model::OdeModel& model, const std::vector<dou
   Cycle c = guess;
   report = {};
   for (int it = 0;; ++it) {
-    Shot s = shoot(model, p, kNoParameter, c, o.solver);
+    Shot s = shoot(model, p, {}, c, o.solver);
     report.iterations = it;
     report.residual = s.max_residual();
     const double tol = o.tolerance * growth(s.monodromy);
@@ -86,7 +85,8 @@ Cycle find_cycle(const model::OdeModel& model, const std::vector<double>& p, con
   fo.solver = o.solver;
   fo.solver.progress = false;
   const sensitivity::PeriodicOrbit orbit = sensitivity::find_periodic_orbit(model, p, fo);
-  Cycle c = newton_fixed_parameter(model, p, {orbit.y0, orbit.period_ms, 0.0}, o, report, shot);
+  const double t0 = model.triggers().empty() ? orbit.t0 : 0.0;
+  Cycle c = newton_fixed_parameter(model, p, {orbit.y0, orbit.period_ms, 0.0, t0}, o, report, shot);
   if (!report.converged)
     throw Error("Newton shooting did not converge from the cycle after the transient (residual " +
                 std::to_string(report.residual) + " after " + std::to_string(report.iterations) + " iterations)");

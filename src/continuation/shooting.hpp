@@ -8,9 +8,11 @@
 // A model that switches at events (model triggers) keeps its triggers in the cycle's run, so
 // Phi carries the saltation terms the solver applies at each switch (docs/sensitivity.md).
 //
-// Contract: every cycle run starts at t = 0 from y0 with no triggered command fired, i.e. the
-// model is autonomous and its discrete mode at the section is its mode at t = 0 (the
-// section lies where the model is in its initial mode; the walking networks have no triggers).
+// Contract: a cycle run starts at the model time t0 of the section crossing found after the
+// transient, so that central commands at fixed times (a levator hold released at 1.5 s) are in
+// the state they have there; the cycle must not depend on t0 beyond that (no command inside
+// a cycle). A model with triggers starts every cycle at t0 = 0 with no triggered command
+// fired: its discrete mode at the section must be its mode at t = 0.
 #include <cstddef>
 #include <limits>
 #include <string>
@@ -23,13 +25,22 @@
 
 namespace phasmid::continuation {
 
-constexpr size_t kNoParameter = std::numeric_limits<size_t>::max();
-
-// The model started at y0 at t = 0, with the base model's triggers and declared structure (so
-// that its runs have the base model's switches and gait features).
+// The model started at y0 at model time t0 (its run's time 0), with the base model's declared
+// structure (gait features) and, where t0 = 0, its triggers (switches at events).
 class CycleModel : public sensitivity::InitialValueModel {
  public:
-  CycleModel(const model::OdeModel& base, std::vector<double> y0);
+  CycleModel(const model::OdeModel& base, std::vector<double> y0, double t0);
+};
+
+// The parameters a continuation moves with lambda: p[index[j]] = base[j] + slope[j] (lambda -
+// start); the continuation parameter itself has slope 1, linked parameters follow it.
+struct ParameterPath {
+  std::vector<size_t> index;
+  std::vector<double> base, slope;
+  double start = 0.0;
+  void apply(std::vector<double>& p, double lambda) const {
+    for (size_t j = 0; j < index.size(); ++j) p[index[j]] = base[j] + slope[j] * (lambda - start);
+  }
 };
 
 struct ShootingOptions {
@@ -45,6 +56,7 @@ struct Cycle {
   std::vector<double> y0;  // state on the section
   double period_ms = 0.0;
   double parameter = 0.0;  // the continuation parameter's value (unused without one)
+  double t0 = 0.0;         // model time at the section (CycleModel)
 };
 
 // The shooting residual at a guess and its derivatives.
@@ -56,9 +68,9 @@ struct Shot {
   double max_residual() const { return residual.size() ? residual.cwiseAbs().maxCoeff() : 0.0; }
 };
 
-// One integration of the cycle's run over [0, T] with sensitivities to y0 and (if param is not
-// kNoParameter) to p[param] = cycle.parameter. Throws solver::SolverError on integration failure.
-Shot shoot(const model::OdeModel& model, std::vector<double> p, size_t param, const Cycle& cycle,
+// One integration of the cycle's run over [0, T] with sensitivities to y0 and to the path's
+// parameters at lambda = cycle.parameter (none: an empty path). Throws Error on integration failure.
+Shot shoot(const model::OdeModel& model, std::vector<double> p, const ParameterPath& path, const Cycle& cycle,
            const solver::SolverOptions& solver);
 
 struct NewtonReport {
