@@ -32,6 +32,18 @@ ShootingOptions tight(solver::RootSpec section, double transient, double max_per
   return o;
 }
 
+ContinuationOptions along(const std::string& parameter, double start, double end, double initial_step,
+                          double max_step, const ShootingOptions& shooting) {
+  ContinuationOptions o;
+  o.parameter = parameter;
+  o.start = start;
+  o.end = end;
+  o.initial_step = initial_step;
+  o.max_step = max_step;
+  o.shooting = shooting;
+  return o;
+}
+
 const SpecialPoint* find_kind(const Branch& b, const std::string& kind) {
   for (const auto& s : b.special)
     if (s.kind == kind) return &s;
@@ -47,14 +59,8 @@ double nontrivial(const BranchPoint& b) {
 // ---- Stuart-Landau ------------------------------------------------------------------------
 // Section: y rising through 0 (theta = 0). omega = 2 pi / 100 rad/ms: T = 100 ms.
 ContinuationOptions sl_options(double start, double end) {
-  ContinuationOptions o;
-  o.parameter = "sl.lambda";
-  o.start = start;
-  o.end = end;
-  o.initial_step = 0.005;
-  o.max_step = 0.01;
+  ContinuationOptions o = along("sl.lambda", start, end, 0.005, 0.01, tight({1, 0.0, +1}, 1500, 150));
   o.min_step = 1e-6;
-  o.shooting = tight({1, 0.0, +1}, 1500, 150);
   o.max_points = 200;
   return o;
 }
@@ -121,13 +127,7 @@ TEST(Continuation, SubcriticalStuartLandauPassesTheFoldOfCycles) {
 // 11.6125 for T(5), sometimes quoted, is off in that digit. Section: x' falling through 0.
 TEST(Continuation, VanDerPolPeriodAgainstMu) {
   auto m = make("van_der_pol");
-  ContinuationOptions o;
-  o.parameter = "vdp.mu";
-  o.start = 1.0;
-  o.end = 5.0;
-  o.initial_step = 0.25;
-  o.max_step = 0.5;
-  o.shooting = tight({1, 0.0, -1}, 200, 40);
+  const ContinuationOptions o = along("vdp.mu", 1.0, 5.0, 0.25, 0.5, tight({1, 0.0, -1}, 200, 40));
   const Branch b = continue_cycles(*m, m->parameters().values(), o);
   ASSERT_EQ(b.special.back().kind, "range_end");
   EXPECT_NEAR(b.points.front().period_ms, 6.6633, 5e-5);
@@ -152,13 +152,7 @@ TEST(Continuation, VanDerPolPeriodAgainstMu) {
 // exp(-T/tau) = ((1-a)/(1+a))^2. Section: x rising through 0.
 TEST(Continuation, RelayOscillatorMultipliersCarryTheSaltationTerms) {
   auto m = make("relay_oscillator");
-  ContinuationOptions o;
-  o.parameter = "relay.a";
-  o.start = 0.3;
-  o.end = 0.7;
-  o.initial_step = 0.05;
-  o.max_step = 0.1;
-  o.shooting = tight({0, 0.0, +1}, 300, 100);
+  const ContinuationOptions o = along("relay.a", 0.3, 0.7, 0.05, 0.1, tight({0, 0.0, +1}, 300, 100));
   const Branch b = continue_cycles(*m, m->parameters().values(), o);
   ASSERT_GE(b.points.size(), 4u);
   EXPECT_EQ(b.special.back().kind, "range_end");
