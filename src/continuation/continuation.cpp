@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <optional>
 
@@ -339,10 +340,56 @@ const std::vector<std::pair<std::string, std::string>>& special_point_kinds() {
   return k;
 }
 
+namespace {
+
+// The branch's header: parameter, unit, section, tracked features (default: every feature the
+// first cycle gives) with their units.
+Branch new_branch(const model::OdeModel& model, const ContinuationOptions& o, const CycleRun& first) {
+  Branch br;
+  br.parameter = o.parameter;
+  br.parameter_unit = model.parameters().at(o.parameter).unit;
+  br.section = o.shooting.section;
+  br.feature_names = o.features;
+  if (br.feature_names.empty())
+    for (const auto& f : first.features) br.feature_names.push_back(f.name);
+  const auto catalogue = features::feature_catalogue(model);
+  for (const auto& name : br.feature_names) {
+    std::string unit;
+    for (const auto& f : catalogue)
+      if (f.name == name) unit = f.unit;
+    br.feature_units.push_back(unit);
+  }
+  return br;
+}
+
+// The cycle at lambda = bound, from the secant between `from` and the step that left the range.
+std::optional<Solved> land_on(Context& c, const Vec& from, const Vec& beyond, double bound) {
+  const size_t n = c.n;
+  Vec zp = from + (bound - from[n + 1]) / (beyond[n + 1] - from[n + 1]) * (beyond - from);
+  zp[n + 1] = bound;
+  Vec row = Vec::Zero(n + 2);
+  row[n + 1] = 1.0;
+  return correct(c, zp, zp, row);
+}
+
+// An end the last point shows: the period running away, or the amplitude gone (Hopf-like).
+std::optional<SpecialPoint> natural_end(const ContinuationOptions& o, const std::vector<BranchPoint>& pts, double amax,
+                                        double t_first) {
+  const BranchPoint& last = pts.back();
+  if (last.period_ms > o.max_period_factor * t_first || period_runs_away(pts))
+    return SpecialPoint{pts.size() - 1, "period_unbounded", last.parameter, last.period_ms,
+                        "the period grows while the parameter stalls (or exceeds max_period_factor times the first)"};
+  if (last.amplitude < o.hopf_amplitude_fraction * amax)
+    return hopf_end(pts, "the amplitude fell below hopf_amplitude_fraction of the largest");
+  return std::nullopt;
+}
+
+}  // namespace
+
 Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, const ContinuationOptions& opt) {
   const auto t_start = std::chrono::steady_clock::now();
   const ContinuationOptions o = checked(model, opt);
-  const size_t param = model.parameters().index(o.parameter), n = model.num_states();
+  const size_t n = model.num_states();
   Context c{model, p, path_of(model, o), 0.0, n, o, Vec::Ones(n + 2)};
   c.path.apply(c.p, o.start);
   NewtonReport rep;
@@ -354,28 +401,18 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
   z0[n + 1] = o.start;
   const CycleRun run0 = run_cycle(c, z0);
   c.w = weights(c, z0, run0);
-
-  Branch br;
-  br.parameter = o.parameter;
-  br.parameter_unit = model.parameters().at(param).unit;
-  br.section = o.shooting.section;
-  br.feature_names = o.features;
-  if (br.feature_names.empty())
-    for (const auto& f : run0.features) br.feature_names.push_back(f.name);
-  for (const auto& name : br.feature_names) {
-    std::string unit;
-    for (const auto& f : features::feature_catalogue(model))
-      if (f.name == name) unit = f.unit;
-    br.feature_units.push_back(unit);
-  }
-  const double sgn = o.end > o.start ? 1.0 : -1.0;
+  Branch br = new_branch(model, o, run0);
+  char note[160];
+  std::snprintf(note, sizeof note, "cycle at the start after the transient: residual %.3g after %d Newton iterations",
+                rep.residual, rep.iterations);
+  br.start_note = note;
   Vec dir = Vec::Zero(n + 2);
-  dir[n + 1] = sgn;
+  dir[n + 1] = o.end > o.start ? 1.0 : -1.0;
   auto cur = correct(c, z0, z0, dir.cwiseProduct(c.w));
-  if (cur) c.min_rate = 1e-3 * std::abs(cur->shot.f_end[o.shooting.section.state]);
   if (!cur) throw Error("the cycle found at " + o.parameter + " = " + std::to_string(o.start) + " did not converge with the parameter column");
+  c.min_rate = 1e-3 * std::abs(cur->shot.f_end[o.shooting.section.state]);
   br.points.push_back(describe(c, *cur, tangent(c, *cur, dir), br.feature_names));
-  const double lo = std::min(o.start, o.end), hi = std::max(o.start, o.end), t_first = z0[n];
+  const double lo = std::min(o.start, o.end), hi = std::max(o.start, o.end);
   double ds = o.initial_step, amax = br.points[0].amplitude;
   while (true) {
     if (static_cast<int>(br.points.size()) >= o.max_points) {
@@ -387,23 +424,18 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
     if (!next) {
       ds /= 2;
       if (ds >= o.min_step) continue;
-      br.special.push_back(failure_end(c, br.points, amax, t_first));
+      br.special.push_back(failure_end(c, br.points, amax, z0[n]));
       break;
     }
     const double lam = next->z[n + 1];
     const bool outside = lam < lo || lam > hi;
-    if (outside) {  // the last point lands on the range end (the nearer bound), at fixed lambda
-      const double bound = lam > hi ? hi : lo;
-      const double f = (bound - cur->z[n + 1]) / (lam - cur->z[n + 1]);
-      Vec zp = cur->z + f * (next->z - cur->z);
-      zp[n + 1] = bound;
-      Vec row = Vec::Zero(n + 2);
-      row[n + 1] = 1.0;
-      next = correct(c, zp, zp, row);
-      if (!next) {
+    if (outside) {
+      std::optional<Solved> landed = land_on(c, cur->z, next->z, lam > hi ? hi : lo);
+      if (!landed) {
         br.special.push_back({br.points.size() - 1, "range_end", lam, br.points.back().period_ms, "the last step left the range"});
         break;
       }
+      next.swap(landed);
     }
     const Vec new_dir = c.w.cwiseProduct(next->z - cur->z).normalized();
     BranchPoint b = describe(c, *next, tangent(c, *next, new_dir), br.feature_names);
@@ -419,13 +451,8 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
     if (cur->iterations <= 3) ds = std::min(ds * 1.5, o.max_step);
     else if (cur->iterations > 6) ds = std::max(ds * 0.6, o.min_step);
     amax = std::max(amax, last.amplitude);
-    if (last.period_ms > o.max_period_factor * t_first || period_runs_away(br.points)) {
-      br.special.push_back({br.points.size() - 1, "period_unbounded", last.parameter, last.period_ms,
-                            "the period grows while the parameter stalls (or exceeds max_period_factor times the first)"});
-      break;
-    }
-    if (last.amplitude < o.hopf_amplitude_fraction * amax) {
-      br.special.push_back(hopf_end(br.points, "the amplitude fell below hopf_amplitude_fraction of the largest"));
+    if (auto end = natural_end(o, br.points, amax, z0[n])) {
+      br.special.push_back(*end);
       break;
     }
   }

@@ -69,6 +69,7 @@ struct Branch {
   std::vector<BranchPoint> points;
   std::vector<SpecialPoint> special;  // in branch order; the last one says how the branch ended
   solver::RootSpec section{0, 0.0, 0};
+  std::string start_note;  // how the first cycle converged (residual, Newton iterations)
   long shots = 0;         // integrations with sensitivities (Newton iterations, all tries)
   double seconds = 0.0;   // wall time
 };

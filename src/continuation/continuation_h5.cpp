@@ -60,6 +60,7 @@ void write_branch_h5(io::H5Writer& out, const model::OdeModel& model, const Bran
   out.set_attribute(g, "end", b.special.empty() ? std::string() : b.special.back().kind);
   out.set_attribute(g, "shots", static_cast<double>(b.shots));
   out.set_attribute(g, "seconds", b.seconds);
+  out.set_attribute(g, "start", b.start_note);
   out.set_attribute(g, "section", model.states().at(b.section.state).name +
                                       (b.section.direction < 0 ? " falling through " : " rising through ") +
                                       std::to_string(b.section.level));
@@ -93,6 +94,7 @@ std::string format_summary(const Branch& b) {
     s << " from " << b.points.front().parameter << " (period " << b.points.front().period_ms << " ms) to "
       << b.points.back().parameter << " (period " << b.points.back().period_ms << " ms)";
   s << "; " << b.shots << " shooting integrations in " << b.seconds << " s\n";
+  if (!b.start_note.empty()) s << "  " << b.start_note << "\n";
   for (const auto& sp : b.special)
     s << "  " << sp.kind << " at " << b.parameter << " = " << sp.parameter << " " << b.parameter_unit << ", period "
       << sp.period_ms << " ms (point " << sp.index << (sp.note.empty() ? "" : "; " + sp.note) << ")\n";
