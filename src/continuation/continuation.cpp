@@ -210,7 +210,7 @@ SpecialPoint locate(Context& c, const Vec& zA, const Vec& dir, double sB, double
                     const std::vector<std::string>& names, size_t index) {
   double s0 = 0.0, s1 = sB, f0 = fA, f1 = fB;
   SpecialPoint sp{index, tf.kind, NAN, NAN, ""};
-  int it = 0;
+  int it = 0, kept = -1;
   for (; it < c.o.locate_iterations; ++it) {
     const double s = s0 - f0 * (s1 - s0) / (f1 - f0);
     auto solved = step(c, zA, dir, s);
@@ -219,9 +219,13 @@ SpecialPoint locate(Context& c, const Vec& zA, const Vec& dir, double sB, double
     const double f = tf.value(b);
     sp.parameter = b.parameter;
     sp.period_ms = b.period_ms;
-    if (!std::isfinite(f) || std::abs(f) < 1e-9) break;
-    if (f * f0 < 0) s1 = s, f1 = f, f0 /= 2;
-    else s0 = s, f0 = f, f1 /= 2;
+    if (!std::isfinite(f) || std::abs(f) < 1e-12 || std::abs(s1 - s0) < 1e-12 * sB) break;
+    // Illinois: the end kept twice in a row has its value halved, so that both ends move.
+    const int end_kept = f * f0 < 0 ? 0 : 1;
+    if (end_kept == 0) s1 = s, f1 = f;
+    else s0 = s, f0 = f;
+    if (end_kept == kept) (end_kept == 0 ? f0 : f1) /= 2;
+    kept = end_kept;
   }
   sp.note = "located by " + std::to_string(it) + " secant iterations on the test function";
   return sp;

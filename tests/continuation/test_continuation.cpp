@@ -18,8 +18,8 @@ using namespace phasmid::continuation;
 
 namespace {
 
-std::unique_ptr<model::OdeModel> make(const std::string& type) {
-  return config::build_model(config::parse_config("[model]\ntype = \"" + type + "\"\n", "test"));
+std::unique_ptr<model::OdeModel> make(const std::string& type, const std::string& keys = "") {
+  return config::build_model(config::parse_config("[model]\ntype = \"" + type + "\"\n" + keys, "test"));
 }
 
 ShootingOptions tight(solver::RootSpec section, double transient, double max_period) {
@@ -116,6 +116,29 @@ TEST(Continuation, SubcriticalStuartLandauPassesTheFoldOfCycles) {
   EXPECT_GE(unstable, 3u);  // the branch went on past the fold onto the unstable cycles
   EXPECT_EQ(b.special.back().kind, "hopf");  // which shrink to the equilibrium at lambda = 0
   EXPECT_NEAR(b.special.back().parameter, 0.0, 1e-4);
+}
+
+// The transverse focus of the `transverse` Stuart-Landau kind: the complex pair
+// exp(a T) exp(+-i beta T) (beta T = 1.3 rad) crosses the unit circle at a = 0, a torus.
+TEST(Continuation, TorusBifurcationLocatedWhereTheComplexPairCrossesTheUnitCircle) {
+  auto m = make("stuart_landau", "transverse = true\n");
+  std::vector<double> p = m->parameters().values();
+  p[m->parameters().index("sl.lambda")] = 0.05;
+  const Branch b = continue_cycles(*m, p, along("sl.a", -0.0035, 0.003, 0.002, 0.002, tight({1, 0.0, +1}, 1500, 150)));
+  const SpecialPoint* torus = find_kind(b, "torus");
+  ASSERT_NE(torus, nullptr);
+  EXPECT_NEAR(torus->parameter, 0.0, 1e-7);
+  EXPECT_NEAR(torus->period_ms, 100.0, 1e-6);
+  EXPECT_EQ(find_kind(b, "fold"), nullptr);
+  EXPECT_EQ(find_kind(b, "period_doubling"), nullptr);
+  for (const auto& q : b.points) {
+    std::complex<double> pair(NAN, NAN);
+    for (const auto& mu : q.multipliers)
+      if (mu.imag() > 0) pair = mu;
+    EXPECT_NEAR(std::abs(pair), std::exp(q.parameter * 100.0), 1e-6) << "a " << q.parameter;
+    EXPECT_NEAR(std::arg(pair), 1.3, 1e-6) << "a " << q.parameter;
+    EXPECT_EQ(q.stable, q.parameter < 0) << "a " << q.parameter;
+  }
 }
 
 // ---- van der Pol ----------------------------------------------------------------------------
