@@ -14,7 +14,6 @@
 // a cycle). A model with triggers starts every cycle at t0 = 0 with no triggered command
 // fired: its discrete mode at the section must be its mode at t = 0.
 #include <cstddef>
-#include <limits>
 #include <string>
 #include <vector>
 
