@@ -36,7 +36,13 @@ int run_continue(const ContinueArgs& a) {
   const model::OdeModel* model = scenario->ode_model();
   if (!model)
     throw Error(cfg.path + ": model type " + scenario->kind() + " is not an ODE system; continuation needs one");
-  const auto options = config::continuation_options(cfg, *model, config::simulation_settings(cfg, scenario.get()));
+  auto options = config::continuation_options(cfg, *model, config::simulation_settings(cfg, scenario.get()));
+  if (!a.quiet)
+    options.on_point = [&options](const continuation::BranchPoint& b, size_t k) {
+      std::cerr << "phasmid continue: point " << k << ": " << options.parameter << " = " << b.parameter << ", period "
+                << b.period_ms << " ms, " << (b.stable ? "stable" : "unstable") << ", " << b.newton_iterations
+                << " Newton iterations\n";
+    };
   const continuation::Branch branch = continuation::continue_cycles(*model, model->parameters().values(), options);
   io::H5Writer w(a.out);
   write_run_file(w, cfg, a.sets, *scenario);

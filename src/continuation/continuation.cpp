@@ -416,6 +416,7 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
   if (!cur) throw Error("the cycle found at " + o.parameter + " = " + std::to_string(o.start) + " did not converge with the parameter column");
   c.min_rate = 1e-3 * std::abs(cur->shot.f_end[o.shooting.section.state]);
   br.points.push_back(describe(c, *cur, tangent(c, *cur, dir), br.feature_names));
+  if (o.on_point) o.on_point(br.points.back(), 0);
   const double lo = std::min(o.start, o.end), hi = std::max(o.start, o.end);
   double ds = o.initial_step, amax = br.points[0].amplitude;
   while (true) {
@@ -445,6 +446,7 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
     BranchPoint b = describe(c, *next, tangent(c, *next, new_dir), br.feature_names);
     detect(c, br.points.back(), b, cur->z, next->z, br.feature_names, br.points.size(), br.special);
     br.points.push_back(std::move(b));
+    if (o.on_point) o.on_point(br.points.back(), br.points.size() - 1);
     cur = std::move(next);
     dir = new_dir;
     const BranchPoint& last = br.points.back();

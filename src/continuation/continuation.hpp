@@ -16,6 +16,7 @@
 // parameter extrapolated from amplitude^2, linear in lambda near a Hopf point), or where
 // integration or Newton fails at the minimum step.
 #include <complex>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,8 @@ struct ContinuationOptions {
   double max_period_factor = 10.0;    // "period_unbounded" once T exceeds this times the first period
   double hopf_amplitude_fraction = 0.05;  // "hopf" once the amplitude falls below this fraction of the largest
   int locate_iterations = 8;          // secant iterations that locate a special point
+  // Called with each new branch point and its index (progress lines of the verb); may be empty.
+  std::function<void(const struct BranchPoint&, size_t)> on_point;
 };
 
 struct BranchPoint {
