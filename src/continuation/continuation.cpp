@@ -443,9 +443,15 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
       next.swap(landed);
     }
     const Vec new_dir = c.w.cwiseProduct(next->z - cur->z).normalized();
-    BranchPoint b = describe(c, *next, tangent(c, *next, new_dir), br.feature_names);
-    detect(c, br.points.back(), b, cur->z, next->z, br.feature_names, br.points.size(), br.special);
-    br.points.push_back(std::move(b));
+    try {  // the features' run and the location of special points integrate again
+      BranchPoint b = describe(c, *next, tangent(c, *next, new_dir), br.feature_names);
+      detect(c, br.points.back(), b, cur->z, next->z, br.feature_names, br.points.size(), br.special);
+      br.points.push_back(std::move(b));
+    } catch (const Error& e) {
+      br.special.push_back({br.points.size() - 1, "integration_failure", br.points.back().parameter,
+                            br.points.back().period_ms, std::string("describing the next cycle: ") + e.what()});
+      break;
+    }
     if (o.on_point) o.on_point(br.points.back(), br.points.size() - 1);
     cur = std::move(next);
     dir = new_dir;
