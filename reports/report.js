@@ -729,6 +729,55 @@
       if (!sobol) gsaMorrisPlane(sec, g, ft);
       gsaConvergence(sec, g, ft, sobol);
     });
+  // ------------------------------------------------------------------ continuation
+  // Branch of periodic orbits (phasmid continue): each quantity against the parameter, stable
+  // stretches solid and unstable ones dashed, special points marked; then |multipliers|.
+  function continuation(c) {
+    var sec = section('continuation', 'Continuation',
+      'Periodic orbits followed in ' + c.parameter + ' (pseudo-arclength, Newton shooting on a Poincaré section). ' +
+      'Solid: stable cycle, dashed: unstable; markers: special points. The branch ended with: ' + (c.end || 'unknown') + '.');
+    var xl = withUnits(c.parameter, c.parameter_units);
+    var unstable = function (ctx) { return !c.stable[ctx.p0DataIndex] || !c.stable[ctx.p1DataIndex] ? [6, 4] : undefined; };
+    var quantities = [{ name: 'period_ms', units: 'ms', values: c.period_ms }].concat(
+      (c.features || []).filter(function (f) { return f.name !== 'period_ms'; }));
+    var grid = el('div', { cls: 'grid' });
+    sec.appendChild(grid);
+    function specialMarks(values) {
+      return (c.special || []).map(function (s) {
+        var y = s.index < values.length ? values[s.index] : null;
+        if (s.kind === 'hopf' || s.kind === 'fold' || s.kind === 'period_doubling' || s.kind === 'torus' || s.kind === 'period_unbounded')
+          if (values === c.period_ms && s.period_ms !== null) y = s.period_ms;
+        return { x: s.parameter !== null ? s.parameter : c.values[s.index], y: y, kind: s.kind };
+      }).filter(function (p) { return p.y !== null && p.x !== null; });
+    }
+    quantities.forEach(function (q, i) {
+      var id = 'fig-continuation-' + safeId(q.name);
+      var f = figure(grid, id, q.name + ' along the branch against ' + c.parameter + ' (solid stable, dashed unstable; triangles: special points).', 300);
+      draw(id, f, {
+        type: 'line',
+        data: { datasets: [
+          lineDataset(withUnits(q.name, q.units), xy(c.values, q.values), i, { segment: { borderDash: unstable }, pointRadius: 2 }),
+          { type: 'scatter', label: 'special points', data: specialMarks(q.values), pointStyle: 'triangle', pointRadius: 7,
+            backgroundColor: '#d62728', borderColor: '#d62728', parsing: false }] },
+        options: { plugins: { title: titleOpt(q.name + ' against ' + c.parameter),
+            tooltip: { callbacks: { label: function (ctx) { var d = ctx.raw; return (d.kind ? d.kind + ': ' : '') + fmt(d.x) + ', ' + fmt(d.y); } } } },
+          scales: { x: axis(xl, { type: 'linear' }), y: axis(withUnits(q.name, q.units)) } }
+      });
+    });
+    var nm = c.multipliers_abs.length ? c.multipliers_abs[0].length : 0, shown = Math.min(nm, 6), sets = [];
+    for (var k = 0; k < shown; k++) {
+      sets.push(lineDataset('|μ' + (k + 1) + '|', c.multipliers_abs.map(function (row, j) {
+        return { x: c.values[j], y: k === c.trivial[j] ? null : row[k] };
+      }), k, { pointRadius: 2 }));
+    }
+    sets.push(lineDataset('unit circle |μ| = 1', [{ x: Math.min.apply(null, c.values), y: 1 }, { x: Math.max.apply(null, c.values), y: 1 }], 9, { borderDash: [4, 4] }));
+    var idm = 'fig-continuation-multipliers';
+    var fm = figure(sec, idm, 'Moduli of the ' + shown + ' largest Floquet multipliers along the branch (the trivial multiplier 1 left out); a cycle is stable while all lie below 1.', 340);
+    draw(idm, fm, { type: 'line', data: { datasets: sets },
+      options: { plugins: { title: titleOpt('Floquet multipliers |μ| against ' + c.parameter) },
+        scales: { x: axis(xl, { type: 'linear' }), y: axis('|μ| (1)') } } });
+    table(sec, 'table-continuation-special', 'Special points', ['kind', c.parameter, 'period (ms)', 'branch point', 'how found'],
+      (c.special || []).map(function (s) { return [s.kind, s.parameter, s.period_ms, s.index, s.note]; }), [false, true, true, true, false]);
   }
 
   // ------------------------------------------------------------------ main
@@ -739,6 +788,7 @@
     if (DATA.fit) fit(DATA.fit);
     if (DATA.gsa) gsa(DATA.gsa);
     if (DATA.sweep) sweep(DATA.sweep);
+    if (DATA.continuation) continuation(DATA.continuation);
     if (DATA.features) features(DATA.features);
     if (DATA.parameters) parameters(DATA.parameters);
     if (DATA.ignored && DATA.ignored.length) {

@@ -15,6 +15,7 @@
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
 #include "io/output_path.hpp"
+#include "report/continuation_panels.hpp"
 #include "sweep/ranges.hpp"
 #include "report/gsa_panels.hpp"
 
@@ -591,6 +592,8 @@ nlohmann::json extract(const std::string& h5_path, std::size_t max_points) {
         extract_sweep(r, out);
       else if (top == "gsa")
         out["gsa"] = extract_gsa(r);
+      else if (top == "continuation")
+        extract_continuation(r, out);
       else
         note_ignored(out, p);
     } catch (const Error& e) {

@@ -24,7 +24,7 @@ for cfg in "$SRC"/configs/*.toml; do
 done
 # every kind the configs use is listed by `phasmid models`
 kinds=$("$PHASMID" models --json)
-for kind in mechanical_joint coupled_ctr_fti single_joint leg three_legs curve_walking cruse1980 ishigami sobol_g; do
+for kind in mechanical_joint coupled_ctr_fti single_joint leg three_legs curve_walking cruse1980 ishigami sobol_g stuart_landau van_der_pol relay_oscillator; do
   grep -q "\"type\": \"$kind\"" <<<"$kinds" || { echo "FAIL models: $kind not listed"; fail=1; }
 done
 "$PHASMID" models "$SRC/configs/cruse1980_table1.toml" | grep -q "^table1_stable " || { echo "FAIL models: catalogue of cruse1980_table1"; fail=1; }

@@ -129,6 +129,7 @@ TEST(ModelKinds, EveryBuiltInKindIsRegisteredOnce) {
   std::vector<std::string> names;
   for (const auto& k : scenario::model_kinds()) names.push_back(k.name);
   for (const char* n : {"mechanical_joint", "coupled_ctr_fti", "single_joint", "leg", "three_legs", "curve_walking",
-                        "cruse1980", "ishigami", "sobol_g", "toy_vdp"})
+                        "cruse1980", "ishigami", "sobol_g", "stuart_landau", "van_der_pol",
+                        "relay_oscillator", "toy_vdp"})
     EXPECT_EQ(std::count(names.begin(), names.end(), n), 1) << n;
 }

@@ -1,0 +1,69 @@
+// phasmid continue CONFIG [-o OUT.h5] [--set NAME=VALUE ...] [-q] [--json]
+#include <iostream>
+
+#include "app/options.hpp"
+#include "app/verb.hpp"
+#include "app/write_output.hpp"
+#include "common/error.hpp"
+#include "config/config.hpp"
+#include "config/continuation_section.hpp"
+#include "continuation/continuation_h5.hpp"
+#include "io/h5_file.hpp"
+#include "io/trajectory_writer.hpp"
+#include "model/ode_model.hpp"
+
+namespace phasmid::app {
+namespace {
+struct ContinueArgs {
+  std::string config, out = "continuation.h5";
+  std::vector<std::string> sets;
+  bool quiet = false, json = false;
+};
+
+void print_json(const continuation::Branch& b) {
+  std::cout << "{\"parameter\": \"" << b.parameter << "\", \"points\": " << b.points.size() << ", \"special_points\": [";
+  for (size_t i = 0; i < b.special.size(); ++i) {
+    const auto& s = b.special[i];
+    std::cout << (i ? ", " : "") << "{\"kind\": \"" << s.kind << "\", \"index\": " << s.index
+              << ", \"parameter\": " << s.parameter << ", \"period_ms\": " << s.period_ms << "}";
+  }
+  std::cout << "]}\n";
+}
+
+int run_continue(const ContinueArgs& a) {
+  config::Config cfg = config::load_config(a.config);
+  auto scenario = config::build_scenario(cfg, a.sets);
+  const model::OdeModel* model = scenario->ode_model();
+  if (!model)
+    throw Error(cfg.path + ": model type " + scenario->kind() + " is not an ODE system; continuation needs one");
+  auto options = config::continuation_options(cfg, *model, config::simulation_settings(cfg, scenario.get()));
+  if (!a.quiet)
+    options.on_point = [&options](const continuation::BranchPoint& b, size_t k) {
+      std::cerr << "phasmid continue: point " << k << ": " << options.parameter << " = " << b.parameter << ", period "
+                << b.period_ms << " ms, " << (b.stable ? "stable" : "unstable") << ", " << b.newton_iterations
+                << " Newton iterations\n";
+    };
+  const continuation::Branch branch = continuation::continue_cycles(*model, model->parameters().values(), options);
+  io::H5Writer w(a.out);
+  write_run_file(w, cfg, a.sets, *scenario);
+  io::write_parameters(w, *model, model->parameters().values());
+  continuation::write_branch_h5(w, *model, branch);
+  w.commit();
+  if (a.json) print_json(branch);
+  else if (!a.quiet) std::cout << continuation::format_summary(branch);
+  if (!a.quiet) std::cerr << "phasmid continue: wrote " << a.out << "\n";
+  return 0;
+}
+
+const RegisterVerb reg{{"continue", "Follow a periodic orbit (gait cycle) as one parameter moves: period, features, Floquet multipliers, bifurcations",
+                        [](CLI::App& sub) {
+                          auto a = std::make_shared<ContinueArgs>();
+                          add_config_arg(sub, a->config, "scenario config (TOML) with a [continuation] section");
+                          add_output(sub, a->out, "continuation.h5");
+                          add_sets(sub, a->sets);
+                          add_quiet(sub, a->quiet);
+                          add_json(sub, a->json);
+                          return std::function<int()>([a] { return run_continue(*a); });
+                        }}};
+}  // namespace
+}  // namespace phasmid::app

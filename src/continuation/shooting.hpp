@@ -1,0 +1,99 @@
+#pragma once
+// Periodic orbits of an OdeModel by Newton shooting on a Poincare section
+// (docs/continuation.md). A cycle is (y0, T): y0 on the section g(y0) = y0[s] - level = 0, and
+// the state one period T after y0 equals y0. Newton's matrix is the monodromy matrix
+// Phi = dy(T)/dy0 from the Floquet machinery (sensitivity::InitialValueModel: forward
+// sensitivities with respect to shifts of the initial state), bordered by f(y(T)) (the
+// derivative with respect to T), the section's row and, for continuation, dy(T)/dlambda.
+// A model that switches at events (model triggers) keeps its triggers in the cycle's run, so
+// Phi carries the saltation terms the solver applies at each switch (docs/sensitivity.md).
+//
+// Contract: a cycle run starts at the model time t0 of the section crossing found after the
+// transient, so that central commands at fixed times (a levator hold released at 1.5 s) are in
+// the state they have there; the cycle must not depend on t0 beyond that (no command inside
+// a cycle). A model with triggers starts every cycle at t0 = 0 with no triggered command
+// fired: its discrete mode at the section must be its mode at t = 0.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "sensitivity/floquet.hpp"
+#include "solver/simulator.hpp"
+
+namespace phasmid::continuation {
+
+// The model started at y0 at model time t0 (its run's time 0), with the base model's declared
+// structure (gait features) and, where t0 = 0, its triggers (switches at events).
+class CycleModel : public sensitivity::InitialValueModel {
+ public:
+  CycleModel(const model::OdeModel& base, std::vector<double> y0, double t0);
+};
+
+// The parameters a continuation moves with lambda: p[index[j]] = base[j] + slope[j] (lambda -
+// start); the continuation parameter itself has slope 1, linked parameters follow it.
+struct ParameterPath {
+  std::vector<size_t> index;
+  std::vector<double> base, slope;
+  double start = 0.0;
+  void apply(std::vector<double>& p, double lambda) const {
+    for (size_t j = 0; j < index.size(); ++j) p[index[j]] = base[j] + slope[j] * (lambda - start);
+  }
+};
+
+struct ShootingOptions {
+  solver::RootSpec section{0, 0.0, +1};  // the cycle starts where y[state] crosses level in direction
+  double transient_ms = 5000.0;   // integrated before the first section crossing is taken
+  double max_period_ms = 2000.0;  // search window for the first period after the transient
+  double tolerance = 1e-7;        // converged when max_i |y_i(T) - y0_i| < tolerance * growth(Phi) (state units)
+  int max_iterations = 12;
+  solver::SolverOptions solver;
+};
+
+struct Cycle {
+  std::vector<double> y0;  // state on the section
+  double period_ms = 0.0;
+  double parameter = 0.0;  // the continuation parameter's value (unused without one)
+  double t0 = 0.0;         // model time at the section (CycleModel)
+};
+
+// The shooting residual at a guess and its derivatives.
+struct Shot {
+  Eigen::VectorXd residual;   // y(T) - y0
+  Eigen::MatrixXd monodromy;  // dy(T)/dy0
+  Eigen::VectorXd f_end;      // f(y(T)) = dy(T)/dT
+  Eigen::VectorXd dy_dparam;  // dy(T)/dlambda (size 0 without a parameter)
+  double max_residual() const { return residual.size() ? residual.cwiseAbs().maxCoeff() : 0.0; }
+};
+
+// One integration of the cycle's run over [0, T] with sensitivities to y0 and to the path's
+// parameters at lambda = cycle.parameter (none: an empty path). Throws Error on integration failure.
+Shot shoot(const model::OdeModel& model, std::vector<double> p, const ParameterPath& path, const Cycle& cycle,
+           const solver::SolverOptions& solver);
+
+struct NewtonReport {
+  int iterations = 0;
+  double residual = 0.0;  // max |y(T) - y0| at the returned cycle
+  bool converged = false;
+};
+
+// Newton on (y0, T) at fixed parameters, from `guess`; `shot` (if given) receives the
+// linearisation at the returned cycle.
+Cycle newton_fixed_parameter(const model::OdeModel& model, const std::vector<double>& p, const Cycle& guess,
+                             const ShootingOptions& options, NewtonReport& report, Shot* shot = nullptr);
+
+// Integrates past the transient, takes the last full period between two section crossings as
+// the guess (sensitivity::find_periodic_orbit) and refines it by Newton. Throws Error if the
+// run has no two crossings after the transient or Newton does not converge.
+Cycle find_cycle(const model::OdeModel& model, const std::vector<double>& p, const ShootingOptions& options,
+                 NewtonReport& report, Shot* shot = nullptr);
+
+// max(1, largest |multiplier|): how much an integration error at the start of a cycle can grow
+// by its end, the factor on ShootingOptions::tolerance.
+double growth(const Eigen::MatrixXd& monodromy);
+
+// Floquet multipliers (eigenvalues of the monodromy) by decreasing modulus.
+std::vector<std::complex<double>> multipliers(const Eigen::MatrixXd& monodromy);
+
+}  // namespace phasmid::continuation

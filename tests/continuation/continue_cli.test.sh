@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# `phasmid continue` end to end on the test kinds: the Stuart-Landau branch in lambda ends at
+# the Hopf point lambda = 0 (docs/continuation.md), the file holds the documented /continuation
+# datasets, `phasmid report` draws the branch in headless Chromium without script errors, and
+# config errors name file:line. Usage: continue_cli.test.sh PHASMID SOURCE_DIR
+set -u
+PHASMID=$1
+fail=0
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cat >"$tmp/sl.toml" <<'TOML'
+[model]
+type = "stuart_landau"
+[simulation]
+rtol = 1e-10
+atol = 1e-10
+[continuation]
+parameter = "sl.lambda"
+range = [0.05, -0.01]
+initial_step = 0.005
+max_step = 0.01
+min_step = 1e-6
+section_state = "sl.y"
+section_level = 0.0
+section_direction = "rising"
+transient_ms = 1500
+max_period_ms = 150
+TOML
+out=$("$PHASMID" continue "$tmp/sl.toml" -o "$tmp/sl.h5" -q --json) || { echo "FAIL continue: $out"; exit 1; }
+echo "$out"
+# The branch ends at the Hopf point: |lambda_H| < 1e-5, period 100 ms.
+/usr/bin/python3 - "$out" <<'PY' || fail=1
+import json, sys
+d = json.loads(sys.argv[1])
+end = d["special_points"][-1]
+ok = end["kind"] == "hopf" and abs(end["parameter"]) < 1e-5 and abs(end["period_ms"] - 100) < 1e-4 and d["points"] >= 5
+print("ok hopf" if ok else "FAIL hopf: %s" % end)
+sys.exit(0 if ok else 1)
+PY
+for ds in parameter period_ms stable multipliers_real multipliers_imag multipliers_abs special_points/kind \
+          special_points/parameter special_points/period_ms special_points/index features/period_ms; do
+  h5ls "$tmp/sl.h5/continuation/$ds" >/dev/null 2>&1 || { echo "FAIL dataset /continuation/$ds missing"; fail=1; }
+done
+"$PHASMID" report "$tmp/sl.h5" -o "$tmp/sl.html" || { echo "FAIL report"; fail=1; }
+if [ -x /usr/bin/chromium ]; then
+  body=$(timeout 120 /usr/bin/chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage \
+    --user-data-dir="$tmp/profile" --virtual-time-budget=15000 --dump-dom "file://$tmp/sl.html" 2>/dev/null | grep -o '<body[^>]*>' | head -1)
+  for want in 'data-status="ok"' fig-continuation-period_ms fig-continuation-multipliers table-continuation-special; do
+    grep -q "$want" <<<"$body" || { echo "FAIL report rendering: no $want in $body"; fail=1; }
+  done
+else
+  echo "FAIL chromium is required (apt-get install -y chromium)"; fail=1
+fi
+# Errors name file:line and the key.
+sed 's/parameter = "sl.lambda"/parameter = "sl.lambdaa"/' "$tmp/sl.toml" >"$tmp/bad.toml"
+err=$("$PHASMID" continue "$tmp/bad.toml" -o "$tmp/bad.h5" -q 2>&1) && { echo "FAIL: unknown parameter accepted"; fail=1; }
+grep -q "bad.toml:7: \[continuation\] unknown parameter 'sl.lambdaa' (did you mean 'sl.lambda'?)" <<<"$err" || { echo "FAIL error text: $err"; fail=1; }
+sed 's/section_direction = "rising"/section_direction = "up"/' "$tmp/sl.toml" >"$tmp/bad2.toml"
+err=$("$PHASMID" continue "$tmp/bad2.toml" -o "$tmp/bad.h5" -q 2>&1) && { echo "FAIL: bad direction accepted"; fail=1; }
+grep -q "bad2.toml:14: \[continuation\] section_direction must be" <<<"$err" || { echo "FAIL error text: $err"; fail=1; }
+exit $fail
