@@ -729,6 +729,8 @@
       if (!sobol) gsaMorrisPlane(sec, g, ft);
       gsaConvergence(sec, g, ft, sobol);
     });
+  }
+
   // ------------------------------------------------------------------ continuation
   // Branch of periodic orbits (phasmid continue): each quantity against the parameter, stable
   // stretches solid and unstable ones dashed, special points marked; then |multipliers|.
