@@ -34,12 +34,24 @@ def test_python_threads_run_while_cpp_integrates():
     assert longest < 0.25 * duration, (longest, duration)
 
 
-def idle_cores():
-    return len(os.sched_getaffinity(0)) - os.getloadavg()[0]
+def idle_cores(seconds=0.5):
+    """Idle cores measured now from /proc/stat (the load average lags by a minute)."""
+    def idle_and_total():
+        ticks = [int(v) for v in open("/proc/stat").readline().split()[1:]]
+        return ticks[3] + ticks[4], sum(ticks)
+    i0, t0 = idle_and_total()
+    time.sleep(seconds)
+    i1, t1 = idle_and_total()
+    cores = min(os.cpu_count() or 1, len(os.sched_getaffinity(0)))
+    return cores * (i1 - i0) / max(1, t1 - t0)
 
 
-@pytest.mark.skipif(idle_cores() < 1.5, reason="needs two idle cores (the load average says they are busy)")
 def test_two_threads_run_in_parallel():
+    # A wall-time claim needs two free cores; ctest runs this file alone (RUN_SERIAL), so it
+    # is skipped only where something outside the suite keeps the machine busy.
+    idle = idle_cores()
+    if idle < 1.5:
+        pytest.skip("needs two idle cores, %.1f idle" % idle)
     s = phasmid.load(config("single_joint_fti.toml"))
     one(s)  # warm-up
     serial, parallel = [], []
