@@ -49,8 +49,10 @@ for sig in KILL INT; do
     || bad "SIG$sig: --resume differs from the uninterrupted sweep"
 done
 
-# SIGKILL during simulate: no output file, at most its temporary.
-"$PHASMID" simulate "$FTI" -o "$tmp/sim.h5" -q & pid=$!
+# SIGKILL during simulate: no output file, at most its temporary. 200 s of model time, so that
+# the run is still going when the signal comes however fast the integrator is.
+sed 's/^t_end_ms = .*/t_end_ms = 200000/' "$FTI" >"$tmp/long.toml"
+"$PHASMID" simulate "$tmp/long.toml" -o "$tmp/sim.h5" -q & pid=$!
 sleep 0.5; kill -KILL $pid; wait $pid
 [ ! -e "$tmp/sim.h5" ] && ok || bad "SIGKILL simulate: a complete-looking output exists"
 

@@ -12,12 +12,13 @@ using namespace phasmid;
 
 namespace {
 std::vector<double> free_motion_parameters(model::CoupledCtrFtiModel& m) {
-  // No muscles, no viscosity: a free double pendulum.
+  // No muscles, no viscosity: a free double pendulum. A viscosity of 0 is outside what a user
+  // may set (docs/model.md "Admissible ranges"), so the values are set by index, unchecked.
   auto& ps = m.parameters();
   for (const char* n : {"middle.ctr.k_L.levation", "middle.ctr.k_D.levation", "middle.ctr.k_L.depression",
                         "middle.ctr.k_D.depression", "middle.fti.k_F.flexion", "middle.fti.k_E.flexion",
                         "middle.fti.k_F.extension", "middle.fti.k_E.extension", "middle.ctr.b_v", "middle.fti.b_v"})
-    ps.set(n, 0.0);
+    ps.set(ps.index(n), 0.0);
   return ps.values();
 }
 

@@ -71,7 +71,7 @@ TEST(SensitivityJob, ErrorsNameFileLineAndKey) {
   expect_error("[sensitivity]\nparameters = [\"middle.fti.k_Q\"]\n", "middle.fti.k_Q");
   expect_error("[sensitivity]\n\nspeed = 3\n", "unknown key 'speed'");
   expect_error("[sensitivity]\nmethod = \"adjoint\"\n", "adjoint");
-  expect_error("[sensitivity]\nt_end_ms = \"long\"\n", "t_end_ms must be a number");
+  expect_error("[sensitivity]\nt_end_ms = \"long\"\n", "t_end_ms must be a finite number");
   expect_error("[sensitivity]\n\ntolerance_factor = 0\n", "cfg.toml:3");
   expect_error("[sensitivity]\ntolerance_factor = -1\n", "tolerance_factor must be a positive number");
 }
