@@ -11,7 +11,8 @@ cd "$(dirname "$0")/.."
 # seconds in Release (fits, gait transitions, three-leg sensitivities), minutes under ASan;
 # the Release suite runs them.
 SLOW_EXES="test_fit_tripod test_three_leg_sensitivity test_gait_transitions test_cruse1980_fit test_coupling_sweep
-  test_walking_three_legs test_leg_floquet test_fit_gapp test_trigger_sensitivity test_leg_feature_sensitivity"
+  test_walking_three_legs test_leg_floquet test_fit_gapp test_trigger_sensitivity test_leg_feature_sensitivity
+  test_single_joint_continuation"
 # Tests left out of the executables that are built: long runs (> 2 s in Release), the
 # browser renderings (Chromium is not instrumented and dominates their time), the examples
 # test (replaced by the shortened examples below) and MPI (build-asan has none).
