@@ -7,6 +7,7 @@
 
 #include "app/options.hpp"
 #include "app/verb.hpp"
+#include "app/write_output.hpp"
 #include "config/gsa_inputs.hpp"
 #include "dist/executor.hpp"
 #include "dist/session.hpp"
@@ -42,12 +43,7 @@ int run(const GsaArgs& a) {
   const config::GsaOutcome r = config::run_gsa(in, o, sweep_done);
   const sweep::SweepOutcome& s = r.sweep;
   if (!sweep_done && s.worker) return 0;
-  if (!r.analysed) {
-    std::cerr << "phasmid gsa: " << (s.signal ? "interrupted" : "stopped") << " with " << (s.n_recovered + s.n_computed)
-              << " of " << s.n_points << " design points done (kept in " << s.journal << "); continue with: "
-              << (s.distributed ? "mpirun ... " : "") << "phasmid gsa " << a.config << " -o " << a.out << " --resume\n";
-    return s.signal ? 128 + s.signal : 3;
-  }
+  if (!r.analysed) return report_unfinished_sweep("gsa", s, "design points", "phasmid gsa " + a.config + " -o " + a.out);
   if (a.quiet) return 0;
   if (!sweep_done)
     std::cerr << "phasmid gsa: " << s.n_points << " design points (" << s.n_failed << " failed, " << s.n_recovered

@@ -7,6 +7,7 @@
 
 #include "app/options.hpp"
 #include "app/verb.hpp"
+#include "app/write_output.hpp"
 #include "config/sweep_inputs.hpp"
 #include "dist/executor.hpp"
 #include "io/h5_file.hpp"
@@ -60,13 +61,9 @@ int run(const SweepArgs& a) {
   o.command = command_line();
   sweep::SweepOutcome r = sweep::run_sweep(config::sweep_inputs(cfg, a.sets), o);
   if (r.worker) return 0;  // MPI worker rank: rank 0 reports
-  if (!r.complete) {
-    std::cerr << "phasmid sweep: " << (r.signal ? "interrupted" : "stopped") << " with "
-              << (r.n_recovered + r.n_computed) << " of " << r.n_points << " points done (kept in " << r.journal
-              << "); continue with: " << (r.distributed ? "mpirun ... " : "") << "phasmid sweep " << a.config << " -o "
-              << a.out << (a.shard.empty() ? "" : " --shard " + a.shard) << " --resume\n";
-    return r.signal ? 128 + r.signal : 3;
-  }
+  if (!r.complete)
+    return report_unfinished_sweep("sweep", r, "points",
+                                   "phasmid sweep " + a.config + " -o " + a.out + (a.shard.empty() ? "" : " --shard " + a.shard));
   if (a.shard.empty()) print_ranges(r.output, a.json);
   if (!a.quiet)
     std::cerr << "phasmid sweep: " << r.n_points << " points" << (a.shard.empty() ? "" : " of shard " + a.shard) << " (" << r.n_failed << " failed, " << r.n_recovered

@@ -22,4 +22,12 @@ void print_features_json(const std::vector<features::Feature>& features) {
   std::cout << out.dump(2) << "\n";
 }
 
+int report_unfinished_sweep(const std::string& verb, const sweep::SweepOutcome& r, const std::string& what,
+                            const std::string& resume_command) {
+  std::cerr << "phasmid " << verb << ": " << (r.signal ? "interrupted" : "stopped") << " with "
+            << (r.n_recovered + r.n_computed) << " of " << r.n_points << " " << what << " done (kept in " << r.journal
+            << "); continue with: " << (r.distributed ? "mpirun ... " : "") << resume_command << " --resume\n";
+  return r.signal ? 128 + r.signal : 3;
+}
+
 }  // namespace phasmid::app

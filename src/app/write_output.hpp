@@ -7,6 +7,7 @@
 #include "config/config.hpp"
 #include "features/features.hpp"
 #include "io/h5_file.hpp"
+#include "sweep/sweep_runner.hpp"
 
 namespace phasmid::app {
 
@@ -15,5 +16,10 @@ void write_run_file(io::H5Writer& w, const config::Config& cfg, const std::vecto
                     const scenario::Scenario& scenario);
 // A JSON list of {name, value, unit} on stdout (null for values that are not finite).
 void print_features_json(const std::vector<features::Feature>& features);
+// For a sweep that did not finish (signal or --stop-after): one line on stderr saying how much
+// is done, where it is kept and the command that continues it (`resume_command` + " --resume");
+// returns the exit status (128 + signal, or 3).
+int report_unfinished_sweep(const std::string& verb, const sweep::SweepOutcome& r, const std::string& what,
+                            const std::string& resume_command);
 
 }  // namespace phasmid::app

@@ -11,8 +11,6 @@
 
 namespace phasmid::fit {
 namespace {
-std::string slurp(const std::string& path, const char* what) { return io::read_text_file(path, what); }
-
 void check_times(const KinematicData& d, const std::vector<size_t>& lines, const std::string& origin) {
   for (size_t k = 0; k < d.time_ms.size(); ++k) {
     if (!std::isfinite(d.time_ms[k]))
@@ -65,7 +63,7 @@ KinematicData parse_kinematic_csv(const std::string& text, const std::string& or
   return d;
 }
 
-KinematicData read_kinematic_csv(const std::string& path) { return parse_kinematic_csv(slurp(path, "kinematic data"), path); }
+KinematicData read_kinematic_csv(const std::string& path) { return parse_kinematic_csv(io::read_text_file(path, "kinematic data"), path); }
 
 KinematicData parse_anipose_csv(const std::string& text, const std::string& origin, const AniposeOptions& o) {
   if (!(o.frame_rate_hz > 0)) throw Error(origin + ": Anipose data need frame_rate_hz > 0 in the config");
@@ -103,7 +101,7 @@ KinematicData parse_anipose_csv(const std::string& text, const std::string& orig
 }
 
 KinematicData read_anipose_csv(const std::string& path, const AniposeOptions& o) {
-  return parse_anipose_csv(slurp(path, "Anipose angles"), path, o);
+  return parse_anipose_csv(io::read_text_file(path, "Anipose angles"), path, o);
 }
 
 std::string format_kinematic_csv(const KinematicData& d, const std::string& comment) {

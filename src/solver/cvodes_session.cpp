@@ -14,7 +14,6 @@
 
 #include "common/error.hpp"
 #include "solver/matrix_kernels.hpp"
-#include "solver/serial_kernels.hpp"
 
 namespace phasmid::solver {
 
@@ -55,11 +54,7 @@ void CvodesSession::FreeArray::operator()(N_Vector* v) const { N_VDestroyVectorA
 CvodesSession::CvodesSession(SUNContext ctx, const SolverOptions& options, const double* y0, size_t n, CVRhsFn rhs,
                              void* user_data)
     : options_(options), ctx_(ctx) {
-  y_.reset(N_VNew_Serial(static_cast<sunindextype>(n), ctx));
-  if (!y_) throw SolverError("N_VNew_Serial failed");
-  // Clones (CVODES' work vectors, the sensitivity arrays) copy the ops table.
-  if (options.vector_kernels == VectorKernels::Phasmid) install_serial_kernels(y());
-  for (size_t i = 0; i < n; ++i) NV_Ith_S(y(), i) = y0[i];
+  y_.reset(new_state_vector(ctx, options, y0, n));
   mem_.reset(CVodeCreate(options.integrator == IntegratorKind::Adams ? CV_ADAMS : CV_BDF, ctx));
   if (!mem_) throw SolverError("CVodeCreate failed");
   check_cvodes(CVodeSetErrHandlerFn(mem(), [](int, const char*, const char*, char*, void*) {}, nullptr), "silence");

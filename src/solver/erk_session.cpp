@@ -7,7 +7,6 @@
 #include <cstdlib>
 
 #include "common/error.hpp"
-#include "solver/serial_kernels.hpp"
 
 namespace phasmid::solver {
 
@@ -38,10 +37,7 @@ void ErkSession::FreeMemory::operator()(void* mem) const { ERKStepFree(&mem); }
 ErkSession::ErkSession(SUNContext ctx, const SolverOptions& options, const double* y0, size_t n, CVRhsFn rhs,
                        void* user_data)
     : rhs_(rhs), user_data_(user_data) {
-  y_.reset(N_VNew_Serial(static_cast<sunindextype>(n), ctx));
-  if (!y_) throw SolverError("N_VNew_Serial failed");
-  if (options.vector_kernels == VectorKernels::Phasmid) install_serial_kernels(y());
-  for (size_t i = 0; i < n; ++i) NV_Ith_S(y(), i) = y0[i];
+  y_.reset(new_state_vector(ctx, options, y0, n));
   mem_.reset(ERKStepCreate(rhs_trampoline, 0.0, y(), ctx));
   if (!mem_) throw SolverError("ERKStepCreate failed");
   check_arkode(ERKStepSetErrHandlerFn(mem(), [](int, const char*, const char*, char*, void*) {}, nullptr), "silence");

@@ -15,6 +15,7 @@
 //    (k <= interpolation_degree()); a negative return means t is outside the last step.
 //  - Sensitivities exist on CVODES only: the other sessions throw from init_sensitivities.
 #include <cvodes/cvodes.h>
+#include <nvector/nvector_serial.h>
 
 #include <cstdlib>
 #include <memory>
@@ -22,6 +23,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "common/error.hpp"
+#include "solver/serial_kernels.hpp"
 #include "solver/simulator.hpp"
 
 namespace phasmid::solver {
@@ -31,6 +34,17 @@ inline std::string take_flag_name(char* name, int flag) {
   std::string s = name ? name : "flag " + std::to_string(flag);
   std::free(name);
   return s;
+}
+
+// A session's state vector: a new serial vector holding y0, with phasmid's compiled kernels
+// unless the options ask for SUNDIALS' own (the package's work vectors are clones of it and
+// copy its ops table). The caller owns it.
+inline N_Vector new_state_vector(SUNContext ctx, const SolverOptions& options, const double* y0, size_t n) {
+  N_Vector y = N_VNew_Serial(static_cast<sunindextype>(n), ctx);
+  if (!y) throw SolverError("N_VNew_Serial failed");
+  if (options.vector_kernels == VectorKernels::Phasmid) install_serial_kernels(y);
+  for (size_t i = 0; i < n; ++i) NV_Ith_S(y, i) = y0[i];
+  return y;
 }
 
 class IntegratorSession {
