@@ -6,6 +6,7 @@
 #include "app/write_output.hpp"
 #include "config/config.hpp"
 #include "io/output_path.hpp"
+#include "io/trajectory_stream.hpp"
 
 namespace phasmid::app {
 namespace {
@@ -22,7 +23,13 @@ int run_simulate(const SimulateArgs& a) {
   config::SimulationSettings s = config::simulation_settings(cfg, scenario.get());
   s.solver.progress = !a.quiet;
   io::H5Writer w(a.out);  // opened before the work so an unwritable path fails early
+  // ODE kinds stream their samples into the file as they are reached (memory independent of
+  // t_end_ms, docs/reliability.md "Memory").
+  std::unique_ptr<io::TrajectoryStream> stream;
+  if (const model::OdeModel* m = scenario->ode_model()) stream = std::make_unique<io::TrajectoryStream>(w, *m);
+  s.solver.output_sink = stream.get();
   auto run = scenario->run(scenario->parameters().values(), s);
+  if (stream) stream->finish();
   write_run_file(w, cfg, a.sets, *scenario);
   run->write(w);
   w.commit();

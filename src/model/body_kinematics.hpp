@@ -19,6 +19,15 @@ struct BodyPath {
   std::vector<double> x_mm, y_mm, heading_deg;  // centre of the body; heading 0 = +x, left turn > 0
 };
 
+// The body's pose while integrating: x, y (mm), heading (rad).
+struct BodyPose {
+  double x = 0.0, y = 0.0, theta = 0.0;
+};
+// One sample of integrate_body_path: the pose moved from the previous sample (index 0 of each
+// pair, degrees) to the current one (index 1), for callers that read the samples in blocks.
+void body_path_step(BodyPose& pose, const double alpha_left[2], const double beta_left[2], const double alpha_right[2],
+                    const double beta_right[2], double beta_thr_deg, double reach_mm, double half_width_mm);
+
 // Angles in degrees sampled at times t (ms); beta_thr_deg the ground-contact threshold.
 BodyPath integrate_body_path(const std::vector<double>& t, const std::vector<double>& alpha_left,
                              const std::vector<double>& beta_left, const std::vector<double>& alpha_right,

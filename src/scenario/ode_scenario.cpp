@@ -22,7 +22,8 @@ std::string trigger_text(const model::CommandTrigger& tr) {
 class OdeRun : public ScenarioRun {
  public:
   OdeRun(const model::OdeModel& m, std::vector<double> p, solver::SolveResult r, const RunSettings& s)
-      : model_(m), p_(std::move(p)), result_(std::move(r)), t_end_ms_(s.t_end_ms) {
+      : model_(m), p_(std::move(p)), result_(std::move(r)), t_end_ms_(s.t_end_ms),
+        streamed_(s.solver.output_sink != nullptr) {
     features::FeatureOptions fo;
     fo.discard_ms = s.discard_ms;
     features_ = features::compute_features(model_, result_, fo);
@@ -31,9 +32,10 @@ class OdeRun : public ScenarioRun {
     for (const auto& c : result_.commands) p_[c.parameter] = c.t_ms;
   }
   const std::vector<features::Feature>& features() const override { return features_; }
-  const solver::SolveResult* solution() const override { return &result_; }
+  const solver::SolveResult* solution() const override { return streamed_ ? nullptr : &result_; }
   void write(io::H5Writer& out) const override {
-    io::write_trajectory(out, model_, result_);
+    if (streamed_) io::write_solver_stats(out, result_.stats);  // the samples went to the sink
+    else io::write_trajectory(out, model_, result_);
     io::write_parameters(out, model_, p_);
     features::write_features_h5(out, features_);
     features::mark_missing_features_h5(out, missing_);
@@ -68,6 +70,7 @@ class OdeRun : public ScenarioRun {
   std::vector<double> p_;
   solver::SolveResult result_;
   double t_end_ms_;
+  bool streamed_;
   std::vector<features::Feature> features_;
   std::vector<std::string> missing_;  // catalogue features the run could not compute (NaN)
 };
@@ -75,6 +78,16 @@ class OdeRun : public ScenarioRun {
 }  // namespace
 
 std::unique_ptr<ScenarioRun> OdeScenario::run(const std::vector<double>& p, const RunSettings& s) const {
+  if (s.solver.output_sink) {
+    features::JointRangeWatch watch(*model_, *s.solver.output_sink);
+    RunSettings watched = s;
+    watched.solver.output_sink = &watch;
+    solver::Simulator sim(*model_, watched.solver);
+    solver::SolveResult r =
+        sim.run(p, solver::output_grid(s.t_end_ms, s.output_dt_ms), features::feature_roots(*model_, p));
+    watch.check(r);
+    return std::make_unique<OdeRun>(*model_, p, std::move(r), s);
+  }
   solver::Simulator sim(*model_, s.solver);
   solver::SolveResult r =
       sim.run(p, solver::output_grid(s.t_end_ms, s.output_dt_ms), features::feature_roots(*model_, p));

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <memory>
 #include <sstream>
 
@@ -14,6 +15,7 @@
 #include "solver/command_schedule.hpp"
 #include "solver/cvodes_session.hpp"
 #include "solver/erk_session.hpp"
+#include "solver/output_sink.hpp"
 #include "solver/run_loop.hpp"
 
 namespace phasmid::solver {
@@ -222,6 +224,7 @@ class Partitioned {
   }
   void record_outputs() {
     if (stepped_) write_outputs(*stepped_, stepped_->t);
+    if (options_.output_sink) flush_outputs(false);
   }
   // The caller's events in time order, each with the full right-hand side at its state; the
   // parts' counters.
@@ -232,6 +235,10 @@ class Partitioned {
   void take_roots(PartSolver& ps, double tret);
   void write_states(PartSolver& ps, double t, double* row) const;
   void write_outputs(PartSolver& ps, double up_to);
+  // With an output sink: the row of output k and how many parts have written it.
+  double* output_row(size_t k);
+  size_t& parts_done(size_t k);
+  void flush_outputs(bool at_end);
   void write_pending_events(PartSolver& ps);
   void feed_triggers(CommandSchedule& s);
   void add_command_time(CommandSchedule& s, double tau, size_t k);
@@ -246,6 +253,13 @@ class Partitioned {
   SolveResult& res_;
   size_t first_out_ = 0;
   std::vector<size_t> parts_done_;  // parts that have written output k
+  // With an output sink: the outputs from pending_base_ on that are not yet handed to it.
+  struct PendingRow {
+    std::vector<double> y;
+    size_t parts_done = 0;
+  };
+  std::deque<PendingRow> pending_;
+  size_t pending_base_ = 0;
   std::vector<char> discarded_;     // per entry of res.events
   std::vector<size_t> deferred_;    // res.events entries that are trigger crossings not yet fed
   PartSolver* stepped_ = nullptr;   // the part of the last advance
@@ -257,15 +271,24 @@ Partitioned::Partitioned(Run& run, const model::OdeModel& model, const SolverOpt
                          const std::vector<double>& output_times, size_t n_caller_roots,
                          const std::vector<double>& y0, SolveResult& res)
     : run_(run), model_(model), options_(options), output_times_(output_times), n_caller_roots_(n_caller_roots),
-      res_(res), parts_done_(output_times.size(), 0) {
+      res_(res) {
   const size_t n = model.num_states(), n_out = output_times.size();
   res.n_states = n;
-  res.t = output_times;
-  res.y.assign(n_out * n, NAN);
-  res.steps_at_output.assign(n_out, 0);
-  while (first_out_ < n_out && output_times[first_out_] <= 0.0) {
-    std::copy(y0.begin(), y0.end(), res.y.begin() + static_cast<long>(first_out_ * n));
-    ++first_out_;
+  if (options.output_sink) {
+    while (first_out_ < n_out && output_times[first_out_] <= 0.0) {
+      options.output_sink->record(output_times[first_out_], y0.data(), n);
+      res.t.assign(1, output_times[first_out_++]);
+    }
+    pending_base_ = first_out_;
+  } else {
+    parts_done_.assign(n_out, 0);
+    res.t = output_times;
+    res.y.assign(n_out * n, NAN);
+    res.steps_at_output.assign(n_out, 0);
+    while (first_out_ < n_out && output_times[first_out_] <= 0.0) {
+      std::copy(y0.begin(), y0.end(), res.y.begin() + static_cast<long>(first_out_ * n));
+      ++first_out_;
+    }
   }
   for (auto& ps : run.parts) ps->next_out = first_out_;
 }
@@ -361,9 +384,38 @@ void Partitioned::write_outputs(PartSolver& ps, double up_to) {
   while (ps.next_out < output_times_.size() && output_times_[ps.next_out] <= up_to) {
     const size_t k = ps.next_out++;
     ps.steps_since_output = 0;
-    write_states(ps, output_times_[k], &res_.y[k * n]);
-    if (++parts_done_[k] == run_.parts.size()) res_.steps_at_output[k] = total_steps();
+    write_states(ps, output_times_[k], options_.output_sink ? output_row(k) : &res_.y[k * n]);
+    if (++parts_done(k) == run_.parts.size() && !options_.output_sink) res_.steps_at_output[k] = total_steps();
   }
+}
+
+double* Partitioned::output_row(size_t k) {
+  if (k < pending_base_) throw Error("internal: partitioned run rewrote an output already handed on");
+  while (pending_base_ + pending_.size() <= k) pending_.push_back({std::vector<double>(model_.num_states(), NAN), 0});
+  return pending_[k - pending_base_].y.data();
+}
+
+size_t& Partitioned::parts_done(size_t k) {
+  if (!options_.output_sink) return parts_done_[k];
+  output_row(k);
+  return pending_[k - pending_base_].parts_done;
+}
+
+// Hands the outputs every part has written to the sink, in order (they complete in order: each
+// part writes its outputs in order). Before the end only those no roll back can reach: a
+// trigger crossing not yet fed may put a command at its time and roll back the outputs after it.
+void Partitioned::flush_outputs(bool at_end) {
+  double safe_until = INFINITY;
+  if (!at_end)
+    for (size_t id : deferred_) safe_until = std::min(safe_until, res_.events[id].t);
+  while (!pending_.empty() && pending_.front().parts_done == run_.parts.size() &&
+         output_times_[pending_base_] <= safe_until) {
+    options_.output_sink->record(output_times_[pending_base_], pending_.front().y.data(), model_.num_states());
+    res_.t.assign(1, output_times_[pending_base_++]);
+    pending_.pop_front();
+  }
+  if (at_end && (!pending_.empty() || pending_base_ != output_times_.size()))
+    throw Error("internal: partitioned run ended with outputs not written");
 }
 
 void Partitioned::write_pending_events(PartSolver& ps) {
@@ -421,7 +473,7 @@ void Partitioned::roll_back(PartSolver& x, double tau) {
   x.session->restart(tau);
   x.restart_pending = false;
   x.t = tau;
-  while (x.next_out > first_out_ && output_times_[x.next_out - 1] > tau) --parts_done_[--x.next_out];
+  while (x.next_out > first_out_ && output_times_[x.next_out - 1] > tau) --parts_done(--x.next_out);
 }
 
 long Partitioned::total_steps() const {
@@ -432,6 +484,7 @@ long Partitioned::total_steps() const {
 
 void Partitioned::finish(const std::vector<double>& p) {
   const size_t n = model_.num_states();
+  if (options_.output_sink) flush_outputs(true);
   std::vector<Event> kept;
   for (size_t id = 0; id < res_.events.size(); ++id)
     if (!discarded_[id] && res_.events[id].root < n_caller_roots_) kept.push_back(std::move(res_.events[id]));

@@ -16,6 +16,7 @@
 #include "solver/command_schedule.hpp"
 #include "solver/cvodes_session.hpp"
 #include "solver/erk_session.hpp"
+#include "solver/output_sink.hpp"
 #include "solver/partitioned_simulator.hpp"
 #include "solver/run_loop.hpp"
 
@@ -450,6 +451,11 @@ void WholeSystem::record_events() {
 }
 
 void WholeSystem::record(double t, bool fetch_sens) {
+  if (options_.output_sink) {
+    options_.output_sink->record(t, N_VGetArrayPointer(session_.y()), d_.n);
+    res_.t.assign(1, t);
+    return;
+  }
   res_.t.push_back(t);
   res_.steps_at_output.push_back(session_.total_steps());
   const size_t n = d_.n;
@@ -481,6 +487,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector
   if (p_given.size() != model_.parameters().size()) throw Error("internal: parameter vector size mismatch");
   if (output_times.empty() || output_times.front() < 0) throw Error("output times must start at t >= 0");
   const size_t ns = sens_params.size();
+  if (ns && options_.output_sink) throw Error("internal: an output sink takes no sensitivities");
   const bool partition = options_.partitioning == Partitioning::On ||
                          (options_.partitioning == Partitioning::Auto && model_.partition_by_default());
   if (partition && ns == 0) {

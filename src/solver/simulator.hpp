@@ -9,6 +9,8 @@
 
 namespace phasmid::solver {
 
+class OutputSink;  // solver/output_sink.hpp
+
 // Auto: dense up to kDenseMaxStates states, KLU (sparse) above, where the sparse factorisation
 // is the faster at equal step counts (measured in docs/benchmarks.md).
 enum class LinearSolverKind { Auto, Dense, Band, Klu };
@@ -67,6 +69,9 @@ struct SolverOptions {
   // docs/benchmarks.md "Partitioned integration").
   Partitioning partitioning = Partitioning::Auto;
   bool progress = false;             // progress line on a terminal (stderr)
+  // Set: output samples go to the sink as they are reached instead of into SolveResult
+  // (plain runs without sensitivities; see SolveResult::t).
+  OutputSink* output_sink = nullptr;
   std::string progress_label = "simulate";
 };
 
@@ -104,7 +109,9 @@ struct ResolvedCommand {
 };
 
 struct SolveResult {
-  std::vector<double> t;    // output times (ms)
+  // Output times (ms). With SolverOptions::output_sink the samples went to the sink: t holds
+  // only the last output time (the end of the analysed window) and y, s, steps_at_output are empty.
+  std::vector<double> t;
   std::vector<double> y;    // n_out x n_states, row-major
   std::vector<double> s;    // n_out x n_states x n_sens, row-major (empty without sensitivities
                             // or with SolverOptions::sensitivities_at_outputs off: see Event::s)
