@@ -84,7 +84,7 @@ std::unique_ptr<ScenarioRun> OdeScenario::run(const std::vector<double>& p, cons
     watched.solver.output_sink = &watch;
     solver::Simulator sim(*model_, watched.solver);
     solver::SolveResult r =
-        sim.run(p, solver::output_grid(s.t_end_ms, s.output_dt_ms), features::feature_roots(*model_, p));
+        sim.run(p, solver::OutputTimes::grid(s.t_end_ms, s.output_dt_ms), features::feature_roots(*model_, p));
     watch.check(r);
     return std::make_unique<OdeRun>(*model_, p, std::move(r), s);
   }

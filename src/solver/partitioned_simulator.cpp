@@ -210,7 +210,7 @@ void start_sessions(Run& run, SUNContext ctx, const SolverOptions& options, cons
 class Partitioned {
  public:
   Partitioned(Run& run, const model::OdeModel& model, const SolverOptions& options,
-              const std::vector<double>& output_times, size_t n_caller_roots, const std::vector<double>& y0,
+              const OutputTimes& output_times, size_t n_caller_roots, const std::vector<double>& y0,
               SolveResult& res);
   bool finished(const CommandSchedule& s) const { return !lagging(s) && s.last_stop(); }
   double advance(CommandSchedule& s);
@@ -248,7 +248,7 @@ class Partitioned {
   Run& run_;
   const model::OdeModel& model_;
   const SolverOptions& options_;
-  const std::vector<double>& output_times_;
+  const OutputTimes& output_times_;
   const size_t n_caller_roots_;
   SolveResult& res_;
   size_t first_out_ = 0;
@@ -268,7 +268,7 @@ class Partitioned {
 };
 
 Partitioned::Partitioned(Run& run, const model::OdeModel& model, const SolverOptions& options,
-                         const std::vector<double>& output_times, size_t n_caller_roots,
+                         const OutputTimes& output_times, size_t n_caller_roots,
                          const std::vector<double>& y0, SolveResult& res)
     : run_(run), model_(model), options_(options), output_times_(output_times), n_caller_roots_(n_caller_roots),
       res_(res) {
@@ -282,7 +282,7 @@ Partitioned::Partitioned(Run& run, const model::OdeModel& model, const SolverOpt
     pending_base_ = first_out_;
   } else {
     parts_done_.assign(n_out, 0);
-    res.t = output_times;
+    res.t = output_times.to_vector();
     res.y.assign(n_out * n, NAN);
     res.steps_at_output.assign(n_out, 0);
     while (first_out_ < n_out && output_times[first_out_] <= 0.0) {
@@ -501,7 +501,7 @@ void Partitioned::finish(const std::vector<double>& p) {
 }  // namespace
 
 SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPartition& P, const SolverOptions& options,
-                            const std::vector<double>& p_given, const std::vector<double>& output_times,
+                            const std::vector<double>& p_given, const OutputTimes& output_times,
                             const std::vector<RootSpec>& caller_roots) {
   const auto wall0 = std::chrono::steady_clock::now();
   CommandSchedule schedule(model, p_given, output_times.back(), {});

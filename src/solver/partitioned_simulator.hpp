@@ -29,6 +29,6 @@ namespace phasmid::solver {
 
 SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPartition& partition,
                             const SolverOptions& options, const std::vector<double>& p,
-                            const std::vector<double>& output_times, const std::vector<RootSpec>& roots);
+                            const OutputTimes& output_times, const std::vector<RootSpec>& roots);
 
 }  // namespace phasmid::solver

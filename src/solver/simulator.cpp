@@ -235,14 +235,24 @@ int root_cb(sunrealtype, N_Vector y, sunrealtype* g, void* ud) {
 
 Simulator::Simulator(const OdeModel& model, SolverOptions options) : model_(model), options_(options) {}
 
-std::vector<double> output_grid(double t_end, double dt) {
+OutputTimes OutputTimes::grid(double t_end, double dt) {
   if (!(dt > 0) || !(t_end > 0)) throw Error("output grid needs t_end > 0 and dt > 0");
-  std::vector<double> t;
-  size_t n = static_cast<size_t>(std::floor(t_end / dt + 1e-9));
-  for (size_t k = 0; k <= n; ++k) t.push_back(k * dt);
-  if (t_end - t.back() > 1e-9) t.push_back(t_end);
+  OutputTimes g;
+  g.n_grid_ = static_cast<size_t>(std::floor(t_end / dt + 1e-9)) + 1;
+  g.dt_ = dt;
+  g.t_end_ = t_end;
+  g.n_ = g.n_grid_ + (t_end - static_cast<double>(g.n_grid_ - 1) * dt > 1e-9 ? 1 : 0);
+  return g;
+}
+
+std::vector<double> OutputTimes::to_vector() const {
+  if (list_) return *list_;
+  std::vector<double> t(n_);
+  for (size_t k = 0; k < n_; ++k) t[k] = (*this)[k];
   return t;
 }
+
+std::vector<double> output_grid(double t_end, double dt) { return OutputTimes::grid(t_end, dt).to_vector(); }
 
 namespace {
 CallbackData jacobian_data(const OdeModel& model, const std::vector<double>& p) {
@@ -318,7 +328,7 @@ void init_sensitivities(CvodesSession& session, const OdeModel& model, const std
 class WholeSystem {
  public:
   WholeSystem(const OdeModel& model, const SolverOptions& options, const CommandSchedule& schedule,
-              IntegratorSession& session, CallbackData& d, const std::vector<double>& output_times,
+              IntegratorSession& session, CallbackData& d, const OutputTimes& output_times,
               size_t n_caller_roots, SolveResult& res)
       : model_(model), options_(options), schedule_(schedule), session_(session), d_(d),
         output_times_(output_times), n_caller_roots_(n_caller_roots), res_(res), ns_(d.sens_params.size()),
@@ -361,7 +371,7 @@ class WholeSystem {
   const CommandSchedule& schedule_;
   IntegratorSession& session_;
   CallbackData& d_;
-  const std::vector<double>& output_times_;
+  const OutputTimes& output_times_;
   const size_t n_caller_roots_;
   SolveResult& res_;
   const size_t ns_;
@@ -481,7 +491,7 @@ std::vector<double*> WholeSystem::sens_columns() const {
 
 }  // namespace
 
-SolveResult Simulator::run(const std::vector<double>& p_given, const std::vector<double>& output_times,
+SolveResult Simulator::run(const std::vector<double>& p_given, const OutputTimes& output_times,
                            const std::vector<RootSpec>& roots, const std::vector<size_t>& sens_params) const {
   const auto wall0 = std::chrono::steady_clock::now();
   if (p_given.size() != model_.parameters().size()) throw Error("internal: parameter vector size mismatch");

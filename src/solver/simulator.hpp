@@ -127,6 +127,26 @@ struct SolveResult {
   }
 };
 
+// The output times of a run: a caller's list (referred to, not copied), or the evenly spaced
+// grid of output_grid() computed on demand, so that a long run holds no list of its times.
+class OutputTimes {
+ public:
+  OutputTimes(const std::vector<double>& list) : list_(&list), n_(list.size()) {}  // implicit: any list
+  static OutputTimes grid(double t_end, double dt);
+  size_t size() const { return n_; }
+  bool empty() const { return n_ == 0; }
+  double operator[](size_t k) const { return list_ ? (*list_)[k] : k < n_grid_ ? k * dt_ : t_end_; }
+  double front() const { return (*this)[0]; }
+  double back() const { return (*this)[n_ - 1]; }
+  std::vector<double> to_vector() const;
+
+ private:
+  OutputTimes() = default;
+  const std::vector<double>* list_ = nullptr;
+  size_t n_ = 0, n_grid_ = 0;  // grid: k * dt for k < n_grid_, then t_end
+  double dt_ = 0.0, t_end_ = 0.0;
+};
+
 class Simulator {
  public:
   Simulator(const model::OdeModel& model, SolverOptions options = {});
@@ -136,8 +156,12 @@ class Simulator {
   // p's values for those parameters are ignored (see SolveResult::commands). Sensitivities
   // include how the triggered times move with p (d t_event / dp at the event, a jump at the
   // command time); a triggered command time in sens_params is an Error (docs/sensitivity.md).
-  SolveResult run(const std::vector<double>& p, const std::vector<double>& output_times,
+  SolveResult run(const std::vector<double>& p, const OutputTimes& output_times,
                   const std::vector<RootSpec>& roots = {}, const std::vector<size_t>& sens_params = {}) const;
+  SolveResult run(const std::vector<double>& p, const std::vector<double>& output_times,
+                  const std::vector<RootSpec>& roots = {}, const std::vector<size_t>& sens_params = {}) const {
+    return run(p, OutputTimes(output_times), roots, sens_params);
+  }
   const SolverOptions& options() const { return options_; }
 
  private:
