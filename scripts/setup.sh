@@ -9,7 +9,7 @@ PACKAGES=(
   libsundials-dev libceres-dev libnlopt-cxx-dev libnlopt-dev libeigen3-dev libhdf5-dev
   libtomlplusplus-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev fonts-liberation
-  libopenmpi-dev openmpi-bin hdf5-tools
+  libopenmpi-dev openmpi-bin hdf5-tools time
   python3-dev pybind11-dev python3-numpy python3-h5py python3-pytest python3-nbclient python3-ipykernel
   python3-matplotlib
 )
