@@ -72,4 +72,23 @@ double BlockCursor::at(hsize_t i) {
   return window_[i - base_];
 }
 
+std::vector<double> read_strided(const H5Reader& r, const std::string& path, hsize_t stride) {
+  const std::vector<hsize_t> dims = r.dims(path);
+  if (dims.empty() || dims.size() > 2 || stride == 0)
+    throw Error(r.path() + ": dataset " + path + " is not a series of rank 1 or 2");
+  const hsize_t cols = dims.size() == 2 ? dims[1] : 1, rows = (dims[0] + stride - 1) / stride;
+  const hsize_t start[2] = {0, 0}, step[2] = {stride, 1}, count[2] = {rows, cols};
+  std::vector<double> out(static_cast<size_t>(rows * cols));
+  hid_t ds = H5Dopen2(r.id(), path.c_str(), H5P_DEFAULT);
+  hid_t file_space = H5Dget_space(ds);
+  hid_t mem_space = H5Screate_simple(static_cast<int>(dims.size()), count, nullptr);
+  herr_t st = H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start, step, count, nullptr);
+  if (st >= 0 && rows > 0) st = H5Dread(ds, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, out.data());
+  H5Sclose(mem_space);
+  H5Sclose(file_space);
+  H5Dclose(ds);
+  if (st < 0) throw Error(r.path() + ": cannot read " + path);
+  return out;
+}
+
 }  // namespace phasmid::io

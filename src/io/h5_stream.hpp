@@ -17,6 +17,11 @@ namespace phasmid::io {
 // Samples per chunk and per block read: 32 KiB of doubles.
 inline constexpr size_t kStreamBlock = 4096;
 
+// Rows 0, stride, 2 stride, ... of the float dataset `path` (all of each row's other
+// dimensions), read by hyperslab: a reader allocates ceil(rows / stride) rows, however long the
+// dataset. One line naming the file and dataset if it is not a numeric dataset of rank 1 or 2.
+std::vector<double> read_strided(const H5Reader& r, const std::string& path, hsize_t stride);
+
 class AppendedDataset {
  public:
   AppendedDataset(H5Writer& w, const std::string& path, const std::string& units);

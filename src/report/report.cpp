@@ -14,6 +14,7 @@
 #include "common/embedded.hpp"
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
+#include "io/h5_stream.hpp"
 #include "io/output_path.hpp"
 #include "report/continuation_panels.hpp"
 #include "sweep/ranges.hpp"
@@ -156,18 +157,30 @@ bool is_cpg_or_mn(const std::string& name) {
   return false;
 }
 
+// Samples of a trajectory series the report reads at most (8 MiB of doubles), before decimating
+// to what a plot shows.
+constexpr std::size_t kMaxReadSamples = std::size_t{1} << 20;
+
 void extract_trajectory(const H5Reader& r, json& out, std::size_t max_points) {
   json tr = json::object();
   if (!is_numeric_dataset(r, "/trajectory/time")) {
     note_ignored(out, "/trajectory (no /trajectory/time)");
     return;
   }
-  const auto t = r.read_doubles("/trajectory/time");
-  const std::size_t n = t.size();
+  // A trajectory longer than kMaxReadSamples is read every stride-th sample (by hyperslab),
+  // so that what the report allocates per series is bounded whatever the file declares.
+  const std::vector<hsize_t> time_dims = r.dims("/trajectory/time");
+  const std::size_t n = count(time_dims);  // samples in the file
+  const hsize_t stride = time_dims.size() == 1 && n > kMaxReadSamples ? (n + kMaxReadSamples - 1) / kMaxReadSamples : 1;
+  auto read = [&](const std::string& path) {
+    return stride == 1 ? r.read_doubles(path) : io::read_strided(r, path, stride);
+  };
+  const auto t = read("/trajectory/time");
+  const std::size_t m = t.size();  // samples read
   tr["time_units"] = units_of(r, "/trajectory/time");
   tr["t_range"] = {num(t.empty() ? 0 : t.front()), num(t.empty() ? 0 : t.back())};
-  tr["decimated"] = n > max_points;
-  if (n <= max_points) tr["time"] = nums(t);
+  tr["decimated"] = m > max_points || stride > 1;
+  if (m <= max_points && stride == 1) tr["time"] = nums(t);
 
   auto series_ok = [&](const std::string& path) {
     return is_numeric_dataset(r, path) && !r.dims(path).empty() && r.dims(path)[0] == n;
@@ -193,7 +206,7 @@ void extract_trajectory(const H5Reader& r, json& out, std::size_t max_points) {
           note_ignored(out, p);
           continue;
         }
-        json s = series(t, r.read_doubles(p), max_points);
+        json s = series(t, read(p), max_points);
         s["leg"] = leg;
         s["joint"] = joint;
         s["units"] = units_of(r, p);
@@ -214,7 +227,7 @@ void extract_trajectory(const H5Reader& r, json& out, std::size_t max_points) {
       std::string p = "/trajectory/states/" + name;
       const bool is_voltage = name.size() > 2 && name.compare(name.size() - 2, 2, ".V") == 0;
       if (is_voltage && series_ok(p) && count(r.dims(p)) == n) {
-        json s = series(t, r.read_doubles(p), max_points);
+        json s = series(t, read(p), max_points);
         s["name"] = name;
         s["kind"] = is_cpg_or_mn(name) ? "cpg_mn" : "other";
         s["units"] = units_of(r, p);
@@ -241,7 +254,7 @@ void extract_trajectory(const H5Reader& r, json& out, std::size_t max_points) {
         note_ignored(out, p);
         continue;
       }
-      arr.push_back({{"leg", leg}, {"intervals", intervals_json(t, r.read_doubles(p))}});
+      arr.push_back({{"leg", leg}, {"intervals", intervals_json(t, read(p))}});
     }
     tr[kind] = arr;
   }
@@ -254,12 +267,12 @@ void extract_trajectory(const H5Reader& r, json& out, std::size_t max_points) {
       continue;
     }
     auto d = r.dims(p);
-    auto v = r.read_doubles(p);
+    auto v = read(p);
     std::size_t k = d.size() >= 2 ? count(d) / n : 1;
     static const char* comp_names[] = {"x", "y", "z"};
     for (std::size_t c = 0; c < k && c < 3; ++c) {
-      std::vector<double> y(n);
-      for (std::size_t i = 0; i < n; ++i) y[i] = v[i * k + c];
+      std::vector<double> y(m);
+      for (std::size_t i = 0; i < m; ++i) y[i] = v[i * k + c];
       json s = series(t, y, max_points);
       s["leg"] = leg;
       s["component"] = k == 1 ? "" : comp_names[c];
