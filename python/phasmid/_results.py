@@ -71,11 +71,18 @@ def _load_h5(path):
             return [x.decode() if isinstance(x, bytes) else x for x in v.tolist()]
         return v
 
+    # A dataset may declare any extent in a few bytes: the limit of the C++ readers
+    # (H5Reader::check_extent, docs/reliability.md) before anything is allocated for it.
+    limit = max(64 * 1024 * 1024, 1000 * os.path.getsize(path))
+
     def visit(name, obj):
         key = "/" + name
         if obj.attrs:
             attrs[key] = {k: convert(v) for k, v in obj.attrs.items()}
         if isinstance(obj, h5py.Dataset):
+            if obj.size * 8 > limit:
+                raise _core.Error("%s: dataset %s declares %d values, more than a %d-byte file holds"
+                                 % (path, key, obj.size, os.path.getsize(path)))
             data[key] = convert(obj[()])
 
     with h5py.File(path, "r") as f:

@@ -67,3 +67,14 @@ def test_solver_failure_is_solver_error():
     with pytest.raises(phasmid.SolverError) as e:
         phasmid.load(config("single_joint_fti.toml")).simulate(t_end_ms=1000, max_steps=2)
     assert "\n" not in str(e.value) and str(e.value)
+
+
+def test_read_refuses_a_declared_extent_the_file_cannot_hold(tmp_path):
+    # 6e8 unallocated doubles (4.8 GB) declared in a file of a few kB: refused before reading.
+    import h5py
+    path = str(tmp_path / "huge.h5")
+    with h5py.File(path, "w") as f:
+        f.create_dataset("trajectory/time", shape=(600000000,), dtype="f8", chunks=(1000,))
+    with pytest.raises(phasmid.Error) as e:
+        phasmid.read(path)
+    assert str(e.value).startswith(path + ": dataset /trajectory/time declares 600000000 values")
