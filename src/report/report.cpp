@@ -14,9 +14,9 @@
 #include "common/embedded.hpp"
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
-#include "io/h5_stream.hpp"
 #include "io/output_path.hpp"
 #include "report/continuation_panels.hpp"
+#include "io/h5_stream.hpp"
 #include "sweep/ranges.hpp"
 #include "report/gsa_panels.hpp"
 
