@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "common/error.hpp"
+#include "io/h5_heap_check.hpp"
 #include "io/output_path.hpp"
 #include "build_info.hpp"
 
@@ -210,6 +211,7 @@ void H5Writer::commit() {
 H5Reader::H5Reader(const std::string& path) : path_(path) {
   if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
   if (!std::filesystem::is_regular_file(path)) throw Error(path + ": not a regular file");  // a fifo would block
+  check_global_heaps(path);  // before HDF5 sees the file: it would loop on some damaged heaps
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file_ < 0) throw Error(path + ": not an HDF5 file");
 }
