@@ -285,6 +285,13 @@ std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
   hid_t space = H5Dget_space(ds);
   check_extent(ds, space, path);
   hssize_t n = H5Sget_simple_extent_npoints(space);
+  try {
+    check_string_descriptors(file_, ds, static_cast<hsize_t>(n), path_, path);  // HDF5 allocates what they declare
+  } catch (...) {
+    H5Sclose(space);
+    H5Dclose(ds);
+    throw;
+  }
   hid_t type = H5Tcopy(H5T_C_S1);
   H5Tset_size(type, H5T_VARIABLE);
   H5Tset_cset(type, H5T_CSET_UTF8);

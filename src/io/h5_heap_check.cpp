@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <vector>
 
 #include "common/error.hpp"
@@ -43,66 +44,135 @@ class RandomAccess {
   std::uint64_t size_ = 0;
 };
 
-// The superblock (at 0, 512, 1024, ... after a user block) gives the width of "length" fields.
-int length_width(RandomAccess& file) {
+// The superblock (at 0, 512, 1024, ... after a user block) gives the widths of "offset"
+// (address) and "length" fields.
+std::pair<int, int> field_widths(RandomAccess& file) {
   static const unsigned char kSuper[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
   for (std::uint64_t at = 0; at + 16 <= file.size(); at = at ? at * 2 : 512) {
     unsigned char head[16];
     file.read(at, head, sizeof head);
     if (std::memcmp(head, kSuper, 8) != 0) continue;
-    const int width = head[8] <= 1 ? head[14] : head[10];
-    return (width == 2 || width == 4 || width == 8) ? width : 8;
+    auto valid = [](int w) { return (w == 2 || w == 4 || w == 8) ? w : 8; };
+    return head[8] <= 1 ? std::pair{valid(head[13]), valid(head[14])} : std::pair{valid(head[9]), valid(head[10])};
   }
-  return 8;
+  return {8, 8};
 }
 
-// HDF5's walk over one collection (H5HG deserialisation). Returns the offset of an object on
-// which that walk would not advance, or 0.
-std::uint64_t stuck_object(RandomAccess& file, std::uint64_t start, int width) {
+// The objects of one collection: index -> size, as HDF5's walk finds them.
+using Collection = std::map<std::uint64_t, std::uint64_t>;
+
+struct Damage {
+  std::uint64_t offset = 0;  // 0: none
+  const char* what = "";
+};
+
+// HDF5's walk over one collection (H5HG deserialisation). Finds an object on which that walk
+// would not advance, or whose data runs past the collection (HDF5 copies it out with that size,
+// reading past its buffer); fills `objects` with what it walked.
+Damage damaged_object(RandomAccess& file, std::uint64_t start, int width, Collection& objects) {
   const std::uint64_t header = 8 + static_cast<std::uint64_t>(width);  // "GCOL", version, 3, size
   const std::uint64_t object_header = 8 + static_cast<std::uint64_t>(width);
-  if (start + header > file.size() || file.uint(start + 4, 1) != 1) return 0;
+  if (start + header > file.size() || file.uint(start + 4, 1) != 1) return {};
   const std::uint64_t size = file.uint(start + 8, width);
-  if (size < header || size > file.size() - start) return 0;  // HDF5 fails its read instead
+  if (size < header || size > file.size() - start) return {};  // HDF5 fails its read instead
   const std::uint64_t end = start + size;
   for (std::uint64_t p = start + header; p < end;) {
     if (p + object_header > end) break;  // tail too small for a header: free space
     const std::uint64_t index = file.uint(p, 2);
     const std::uint64_t object_size = file.uint(p + 8, width);
+    objects[index] = object_size;
     std::uint64_t need = object_size;
     if (index > 0) {
-      if (object_size > UINT64_MAX - object_header - kAlignment) return p;  // wraps around
+      if (object_size > end - p - object_header) return {p, "an object larger than its collection"};
       need = object_header + (object_size + kAlignment - 1) / kAlignment * kAlignment;
     }
-    if (need == 0 || need > UINT64_MAX - p) return p;
+    if (need == 0) return {p, "an object HDF5 cannot step over"};
+    if (need > end - p) break;  // free space running past the end: HDF5 stops its walk there
     p += need;
   }
-  return 0;
+  return {};
+}
+
+// Calls visit(offset, block, n, at) for every block of the file, each read with `overlap` bytes
+// of the next one so that a pattern of that length is seen whole in one block.
+template <class Visit>
+void for_each_block(RandomAccess& file, std::size_t overlap, Visit&& visit) {
+  constexpr std::size_t kBlock = 1 << 20;
+  std::vector<char> block(kBlock + overlap);
+  for (std::uint64_t at = 0; at < file.size(); at += kBlock) {
+    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(block.size(), file.size() - at));
+    file.read(at, block.data(), n);
+    visit(block.data(), n, std::min(n, kBlock), at);
+  }
+}
+
+[[noreturn]] void refuse(const std::string& path, std::uint64_t byte, const std::string& what) {
+  throw Error(path + ": damaged HDF5 global heap at byte " + std::to_string(byte) + " (" + what +
+              "); the file cannot be read");
+}
+
+std::map<std::uint64_t, Collection> walk_collections(RandomAccess& file, int width, const std::string& path) {
+  std::map<std::uint64_t, Collection> collections;
+  for_each_block(file, sizeof kSignature, [&](const char* b, std::size_t n, std::size_t own, std::uint64_t at) {
+    for (const char* it = b; (it = std::search(it, b + n, std::begin(kSignature), std::end(kSignature))) < b + own; ++it) {
+      const std::uint64_t offset = at + static_cast<std::uint64_t>(it - b);
+      Collection objects;
+      if (const Damage d = damaged_object(file, offset, width, objects); d.offset) refuse(path, d.offset, d.what);
+      if (!objects.empty()) collections[offset] = std::move(objects);
+    }
+  });
+  return collections;
+}
+
+// A variable-length element is stored as (length: 4 bytes, collection address, object index:
+// 4 bytes). HDF5 allocates and clears `length` bytes before it reads the object, so a damaged
+// length makes it take up to 4 GB for a few-kB file. No string in a file is longer than the
+// file: a descriptor that names an object of a collection and declares more is refused.
+void check_descriptors(RandomAccess& file, int offset_width, const std::map<std::uint64_t, Collection>& collections,
+                       const std::string& path) {
+  const std::size_t span = 4 + static_cast<std::size_t>(offset_width) + 4;
+  for_each_block(file, span, [&](const char* b, std::size_t n, std::size_t own, std::uint64_t at) {
+    auto le = [&](std::size_t i, int w) {
+      std::uint64_t v = 0;
+      for (int k = w - 1; k >= 0; --k) v = (v << 8) | static_cast<unsigned char>(b[i + static_cast<std::size_t>(k)]);
+      return v;
+    };
+    for (std::size_t i = 0; i < own && i + span <= n; ++i) {
+      if (le(i, 4) <= file.size()) continue;
+      const auto c = collections.find(le(i + 4, offset_width));
+      if (c != collections.end() && c->second.count(le(i + 4 + static_cast<std::size_t>(offset_width), 4)))
+        refuse(path, at + i, "a string declares " + std::to_string(le(i, 4)) + " bytes");
+    }
+  });
 }
 
 }  // namespace
 
 void check_global_heaps(const std::string& path) {
   RandomAccess file(path);
-  const int width = length_width(file);
-  constexpr std::size_t kBlock = 1 << 20;
-  std::vector<char> block(kBlock + sizeof kSignature);
-  for (std::uint64_t at = 0; at < file.size(); at += kBlock) {
-    const std::size_t n = static_cast<std::size_t>(
-        std::min<std::uint64_t>(block.size(), file.size() - at));  // overlaps the next block by 4
-    file.read(at, block.data(), n);
-    for (auto it = block.begin(); it != block.begin() + static_cast<std::ptrdiff_t>(n);) {
-      it = std::search(it, block.begin() + static_cast<std::ptrdiff_t>(n), std::begin(kSignature),
-                       std::end(kSignature));
-      if (it == block.begin() + static_cast<std::ptrdiff_t>(n)) break;
-      const std::uint64_t offset = at + static_cast<std::uint64_t>(it - block.begin());
-      if (offset - at < kBlock) {  // a match in the overlap is the next block's
-        if (const std::uint64_t bad = stuck_object(file, offset, width))
-          throw Error(path + ": damaged HDF5 global heap at byte " + std::to_string(bad) +
-                      " (an object HDF5 cannot step over); the file cannot be read");
-      }
-      ++it;
-    }
+  const auto [offset_width, length_width] = field_widths(file);
+  const auto collections = walk_collections(file, length_width, path);
+  if (!collections.empty()) check_descriptors(file, offset_width, collections, path);
+}
+
+void check_string_descriptors(hid_t file, hid_t dataset, hsize_t n, const std::string& file_path,
+                              const std::string& dataset_path) {
+  if (n == 0) return;
+  const std::string where = file_path + ": dataset " + dataset_path;
+  const haddr_t start = H5Dget_offset(dataset);
+  if (start == HADDR_UNDEF) throw Error(where + " is not stored contiguously (phasmid does not write such strings)");
+  size_t offset_width = 8, length_width = 8;
+  const hid_t fcpl = H5Fget_create_plist(file);
+  if (fcpl >= 0) H5Pget_sizes(fcpl, &offset_width, &length_width), H5Pclose(fcpl);
+  RandomAccess raw(file_path);
+  const std::uint64_t element = 4 + offset_width + 4;  // length, collection address, index
+  if (start > raw.size() || n > (raw.size() - start) / element)
+    throw Error(where + ": its " + std::to_string(n) + " strings lie beyond the end of the file");
+  for (hsize_t k = 0; k < n; ++k) {
+    const std::uint64_t length = raw.uint(start + k * element, 4);
+    if (length > raw.size())
+      throw Error(where + ": damaged string at element " + std::to_string(k) + " (declares " + std::to_string(length) +
+                  " bytes in a " + std::to_string(raw.size()) + "-byte file)");
   }
 }
 

@@ -51,6 +51,15 @@ void make_first_object_free_space(std::vector<char>& bytes, std::size_t collecti
   for (int i = 0; i < 8; ++i) object[8 + i] = static_cast<char>((size >> (8 * i)) & 0xff);
 }
 
+std::string error_of(const std::string& path) {
+  try {
+    io::check_global_heaps(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 }  // namespace
 
 TEST(H5HeapCheck, AcceptsTheFilesPhasmidWrites) {
@@ -85,4 +94,53 @@ TEST(H5HeapCheck, LeavesOtherDamageToHdf5) {
   make_first_object_free_space(bytes, first_collection(bytes), 24);
   spit(path, bytes);
   EXPECT_NO_THROW(io::check_global_heaps(path));
+}
+
+TEST(H5HeapCheck, RefusesAnObjectLargerThanItsCollection) {
+  // HDF5 would copy the object out with the declared size, reading past the collection.
+  const auto path = write_file_with_strings("phasmid_heap_long.h5");
+  auto bytes = slurp(path);
+  const std::size_t collection = first_collection(bytes);
+  char* size = bytes.data() + collection + 16 + 8;  // first object's size field
+  size[3] = 0x10;  // + 256 MiB
+  spit(path, bytes);
+  EXPECT_NE(error_of(path).find(": damaged HDF5 global heap at byte " + std::to_string(collection + 16) +
+                                " (an object larger than its collection)"),
+            std::string::npos);
+}
+
+TEST(H5HeapCheck, RefusesAStringLongerThanTheFileBeforeHdf5AllocatesIt) {
+  // A string dataset's descriptor (length, collection, index) with a damaged length: HDF5 would
+  // allocate and clear that many bytes (here 4 GB) before it reads the string.
+  const auto path = write_file_with_strings("phasmid_heap_descriptor.h5");
+  std::size_t start = 0;
+  {
+    io::H5Reader r(path);
+    const hid_t ds = H5Dopen2(r.id(), "/parameters/names", H5P_DEFAULT);
+    start = static_cast<std::size_t>(H5Dget_offset(ds));
+    H5Dclose(ds);
+  }
+  auto bytes = slurp(path);
+  ASSERT_LT(start + 16, bytes.size());
+  std::memset(bytes.data() + start + 16, 0xff, 4);  // element 1's length: 2^32 - 1
+  spit(path, bytes);
+  // With the rest of the descriptor intact, the scan at open finds it wherever it is stored
+  // (attributes too, whose bytes HDF5's API does not give).
+  EXPECT_NE(error_of(path).find(": damaged HDF5 global heap at byte " + std::to_string(start + 16) +
+                                " (a string declares 4294967295 bytes)"),
+            std::string::npos)
+      << error_of(path);
+  // With its object index damaged too the scan cannot tell it from data; the dataset's own
+  // check, which reads the descriptors where the dataset stores them, still refuses it.
+  std::memset(bytes.data() + start + 16 + 12, 0x77, 2);
+  spit(path, bytes);
+  io::H5Reader r(path);
+  EXPECT_NO_THROW(r.read_string_attribute("/", "config"));
+  try {
+    r.read_strings("/parameters/names");
+    FAIL() << "a 4 GB string was read";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": dataset /parameters/names: damaged string at element 1 (declares 4294967295 bytes in a " +
+                                         std::to_string(bytes.size()) + "-byte file)");
+  }
 }
