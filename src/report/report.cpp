@@ -14,6 +14,7 @@
 #include "common/embedded.hpp"
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
+#include "io/h5_scalar.hpp"
 #include "io/output_path.hpp"
 #include "report/continuation_panels.hpp"
 #include "sweep/ranges.hpp"
@@ -307,7 +308,7 @@ void extract_features(const H5Reader& r, json& out) {
   for (const auto& name : names) {
     std::string p = "/features/" + name;
     if (is_numeric_dataset(r, p) && count(r.dims(p)) == 1) {
-      rows.push_back({{"name", name}, {"value", num(r.read_doubles(p)[0])}, {"units", units_of(r, p)}});
+      rows.push_back({{"name", name}, {"value", num(io::read_scalar(r, p))}, {"units", units_of(r, p)}});
     } else if (is_numeric_dataset(r, p) && count(r.dims(p)) <= 64) {  // e.g. phases of six legs
       rows.push_back({{"name", name}, {"value", nums(r.read_doubles(p))}, {"units", units_of(r, p)}});
     } else if (is_dataset(r, p) && is_string_dataset(r, p)) {
