@@ -17,11 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "model/leg_network.hpp"
-#include "model/network_builder.hpp"
 #include "model/stiff_rates.hpp"
 #include "solver/ark_imex_session.hpp"
 #include "solver/erk_session.hpp"
+#include "walking_models.hpp"
 
 using namespace phasmid;
 
@@ -131,19 +130,7 @@ int main(int argc, char** argv) {
   const auto tols = split(argc > 3 ? argv[3] : "1e-4,1e-5,1e-6");
   const auto methods = split(argc > 4 ? argv[4] : "dp5,ark4,ark5,ark4v,ark5v");
   const int repeats = std::getenv("BENCH_REPEATS") ? std::max(1, std::atoi(std::getenv("BENCH_REPEATS"))) : 3;
-  std::unique_ptr<model::NetworkModel> m;
-  if (which == "joint") {
-    m = model::build_single_joint_model("middle", model::JointType::Fti, "", mn);
-  } else if (which == "leg") {
-    model::LegOptions o;
-    o.thc_set = "A.17";
-    o.motoneuron = mn;
-    m = model::build_leg_model("middle", o);
-  } else {
-    model::ThreeLegOptions o;
-    o.motoneuron = mn;
-    m = model::build_three_leg_model(o);
-  }
+  std::unique_ptr<model::NetworkModel> m = bench::build_walking_model(which, mn);
   const Features ref = run(*m, "dp5", 1e-11);
   std::printf("# bench_imex %s %s: reference DP5 1e-11: period %.6f ms, angles %.6f / %.6f deg, %ld steps\n",
               which.c_str(), argc > 2 ? argv[2] : "spiking", ref.period, ref.min_deg, ref.max_deg, ref.steps);

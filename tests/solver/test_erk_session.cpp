@@ -57,20 +57,10 @@ TEST(ErkSession, LocatesRootsInTheirDirection) {
   solver::SolverOptions so;
   so.integrator = solver::IntegratorKind::ErkDp5;
   so.rtol = so.atol = 1e-10;
-  auto rhs = [](sunrealtype, N_Vector y, N_Vector ydot, void*) {
-    NV_Ith_S(ydot, 0) = NV_Ith_S(y, 1);
-    NV_Ith_S(ydot, 1) = -NV_Ith_S(y, 0);
-    return 0;
-  };
-  auto g = [](sunrealtype, N_Vector y, sunrealtype* gout, void*) {
-    gout[0] = NV_Ith_S(y, 0);
-    gout[1] = NV_Ith_S(y, 0);
-    return 0;
-  };
   solver::SundialsContext ctx;
   const double y0[2] = {1.0, 0.0};
-  solver::ErkSession session(ctx.get(), so, y0, 2, rhs, nullptr);
-  session.init_roots({-1, +1}, g);
+  solver::ErkSession session(ctx.get(), so, y0, 2, test::oscillator_rhs, nullptr);
+  session.init_roots({-1, +1}, test::oscillator_roots);
   session.set_stop_time(5.0);
   double t = 0.0;
   int found[2] = {0, 0};
