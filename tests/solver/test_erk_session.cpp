@@ -62,17 +62,7 @@ TEST(ErkSession, LocatesRootsInTheirDirection) {
   solver::ErkSession session(ctx.get(), so, y0, 2, test::oscillator_rhs, nullptr);
   session.init_roots({-1, +1}, test::oscillator_roots);
   session.set_stop_time(5.0);
-  double t = 0.0;
-  int found[2] = {0, 0};
-  ASSERT_EQ(session.advance(5.0, &t, CV_NORMAL), CV_ROOT_RETURN);
-  session.root_info(found);
-  EXPECT_NEAR(t, M_PI / 2, 1e-8);
-  EXPECT_EQ(found[0], -1);
-  EXPECT_EQ(found[1], 0);
-  ASSERT_EQ(session.advance(5.0, &t, CV_NORMAL), CV_ROOT_RETURN);
-  session.root_info(found);
-  EXPECT_NEAR(t, 3 * M_PI / 2, 1e-8);
-  EXPECT_EQ(found[1], 1);
+  double t = test::expect_oscillator_roots(session);
   // The interpolant's derivative at the root: y1' = -sin(3 pi / 2) = 1.
   N_Vector d = session.work();
   ASSERT_GE(session.dky(t, 1, d), 0);
