@@ -34,6 +34,7 @@ ArkImexSession::ArkImexSession(SUNContext ctx, const SolverOptions& options, con
       kappa_y_(n),
       newton_diag_(n) {
   if (offsets_.size() != n) throw Error("internal: ArkImexSession needs one offset per state");
+  if (imex.order != 4 && imex.order != 5) throw Error("internal: ArkImexSession has the orders 4 and 5");
   y_.reset(new_state_vector(ctx, options, y0, n));
   mem_.reset(ARKStepCreate(fe_trampoline, fi_trampoline, 0.0, y(), ctx));
   if (!mem_) throw SolverError("ARKStepCreate failed");

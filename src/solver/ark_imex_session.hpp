@@ -7,10 +7,13 @@
 // The Newton matrix I - gamma df_I/dy is taken as its diagonal 1 + gamma kappa, so a linear
 // solve is one multiplication per state (a matrix-embedded SUNLinearSolver); kappa is taken at
 // every stage's predicted state. Kennedy-Carpenter ARK4(3)6L[2]SA or ARK5(4)8L[2]SA tables.
+// Measured slower than Dormand-Prince on the networks at matched accuracy (docs/benchmarks.md
+// "IMEX against Dormand-Prince"), so no [simulation] integrator selects it; bench/bench_imex.cpp.
 //
 // Contract: as ErkSession (destructor releases everything, set-up failures throw SolverError
-// naming the ARKODE call, counters summed over restarts, no sensitivities); Newton iterations
-// and linear set-ups are counted.
+// naming the ARKODE call, counters summed over restarts, no sensitivities). rhs_evals counts
+// the f_E evaluations (one full right-hand side each); Newton iterations and convergence
+// failures are counted; linear set-ups stay 0 (the diagonal is taken in each solve).
 #include <functional>
 #include <memory>
 #include <string>
