@@ -124,24 +124,31 @@ std::map<std::uint64_t, Collection> walk_collections(RandomAccess& file, int wid
   return collections;
 }
 
+template <std::size_t kWidth>
+std::uint64_t little_endian(const char* p) {
+  static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "HDF5's little-endian fields are read directly");
+  std::uint64_t v = 0;
+  std::memcpy(&v, p, kWidth);  // one load: this scan visits every byte of the file
+  return v;
+}
+
 // A variable-length element is stored as (length: 4 bytes, collection address, object index:
 // 4 bytes). HDF5 allocates and clears `length` bytes before it reads the object, so a damaged
 // length makes it take up to 4 GB for a few-kB file. No string in a file is longer than the
 // file: a descriptor that names an object of a collection and declares more is refused.
-void check_descriptors(RandomAccess& file, int offset_width, const std::map<std::uint64_t, Collection>& collections,
+template <std::size_t kOffsetWidth>
+void check_descriptors(RandomAccess& file, const std::map<std::uint64_t, Collection>& collections,
                        const std::string& path) {
-  const std::size_t span = 4 + static_cast<std::size_t>(offset_width) + 4;
-  for_each_block(file, span, [&](const char* b, std::size_t n, std::size_t own, std::uint64_t at) {
-    auto le = [&](std::size_t i, int w) {
-      std::uint64_t v = 0;
-      for (int k = w - 1; k >= 0; --k) v = (v << 8) | static_cast<unsigned char>(b[i + static_cast<std::size_t>(k)]);
-      return v;
-    };
-    for (std::size_t i = 0; i < own && i + span <= n; ++i) {
-      if (le(i, 4) <= file.size()) continue;
-      const auto c = collections.find(le(i + 4, offset_width));
-      if (c != collections.end() && c->second.count(le(i + 4 + static_cast<std::size_t>(offset_width), 4)))
-        refuse(path, at + i, "a string declares " + std::to_string(le(i, 4)) + " bytes");
+  constexpr std::size_t kSpan = 4 + kOffsetWidth + 4;
+  const std::uint64_t lowest = collections.begin()->first, highest = collections.rbegin()->first;
+  for_each_block(file, kSpan, [&](const char* b, std::size_t n, std::size_t own, std::uint64_t at) {
+    for (std::size_t i = 0; i < own && i + kSpan <= n; ++i) {
+      const std::uint64_t length = little_endian<4>(b + i);
+      const std::uint64_t address = little_endian<kOffsetWidth>(b + i + 4);
+      if (length <= file.size() || address < lowest || address > highest) continue;
+      const auto c = collections.find(address);
+      if (c != collections.end() && c->second.count(little_endian<4>(b + i + 4 + kOffsetWidth)))
+        refuse(path, at + i, "a string declares " + std::to_string(length) + " bytes");
     }
   });
 }
@@ -152,7 +159,12 @@ void check_global_heaps(const std::string& path) {
   RandomAccess file(path);
   const auto [offset_width, length_width] = field_widths(file);
   const auto collections = walk_collections(file, length_width, path);
-  if (!collections.empty()) check_descriptors(file, offset_width, collections, path);
+  if (collections.empty()) return;
+  switch (offset_width) {
+    case 2: return check_descriptors<2>(file, collections, path);
+    case 4: return check_descriptors<4>(file, collections, path);
+    default: return check_descriptors<8>(file, collections, path);
+  }
 }
 
 void check_string_descriptors(hid_t file, hid_t dataset, hsize_t n, const std::string& file_path,
