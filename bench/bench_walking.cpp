@@ -28,10 +28,9 @@
 #include <string>
 
 #include "features/features.hpp"
-#include "model/leg_network.hpp"
-#include "model/network_builder.hpp"
 #include "solver/integrator_kind.hpp"
 #include "solver/simulator.hpp"
+#include "walking_models.hpp"
 
 using namespace phasmid;
 
@@ -78,19 +77,7 @@ int main(int argc, char** argv) {
           integrations.find(integ) == std::string::npos)
         continue;
       const model::MotoneuronModel mn = model::parse_motoneuron_model(form);
-      std::unique_ptr<model::NetworkModel> m;
-      if (std::string(c.key) == "joint") {
-        m = model::build_single_joint_model("middle", model::JointType::Fti, "", mn);
-      } else if (std::string(c.key) == "leg") {
-        model::LegOptions o;
-        o.thc_set = "A.17";
-        o.motoneuron = mn;
-        m = model::build_leg_model("middle", o);
-      } else {
-        model::ThreeLegOptions o;
-        o.motoneuron = mn;
-        m = model::build_three_leg_model(o);
-      }
+      std::unique_ptr<model::NetworkModel> m = bench::build_walking_model(c.key, mn);
       solver::SolverOptions sok = so;
       if (std::string(kern) == "sundials") sok.vector_kernels = solver::VectorKernels::Sundials;
       sok.partitioning = std::string(integ) == "parts" ? solver::Partitioning::On : solver::Partitioning::Off;

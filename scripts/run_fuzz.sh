@@ -31,7 +31,7 @@ for t in $TARGETS; do
   # Full allocation stacks for the HDF5 reader: libhdf5 has no frame pointers, and its
   # suppression in tests/sanitizers/lsan.supp matches a frame the fast unwinder cannot see.
   asan=$ASAN_OPTIONS
-  [ "$t" = h5_input ] && asan+=:fast_unwind_on_malloc=0
+  case $t in h5_*) asan+=:fast_unwind_on_malloc=0 ;; esac
   if ASAN_OPTIONS=$asan "$SANITIZER_BUILD/fuzz/fuzz_$t" -max_total_time="$SECONDS_EACH" -seed="$SEED" -timeout=20 -rss_limit_mb=2048 -max_len=65536 \
        -print_final_stats=1 -artifact_prefix="$work/artifacts/" "$work/corpus" "fuzz/corpus/$t" \
        >"$work/log" 2>&1; then

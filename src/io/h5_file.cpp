@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "common/error.hpp"
+#include "io/h5_heap_check.hpp"
 #include "io/output_path.hpp"
 #include "build_info.hpp"
 
@@ -210,6 +211,7 @@ void H5Writer::commit() {
 H5Reader::H5Reader(const std::string& path) : path_(path) {
   if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
   if (!std::filesystem::is_regular_file(path)) throw Error(path + ": not a regular file");  // a fifo would block
+  check_global_heaps(path);  // before HDF5 sees the file: it would loop on some damaged heaps
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file_ < 0) throw Error(path + ": not an HDF5 file");
 }
@@ -283,6 +285,13 @@ std::vector<std::string> H5Reader::read_strings(const std::string& path) const {
   hid_t space = H5Dget_space(ds);
   check_extent(ds, space, path);
   hssize_t n = H5Sget_simple_extent_npoints(space);
+  try {
+    check_string_descriptors(file_, ds, static_cast<hsize_t>(n), path_, path);  // HDF5 allocates what they declare
+  } catch (...) {
+    H5Sclose(space);
+    H5Dclose(ds);
+    throw;
+  }
   hid_t type = H5Tcopy(H5T_C_S1);
   H5Tset_size(type, H5T_VARIABLE);
   H5Tset_cset(type, H5T_CSET_UTF8);

@@ -14,6 +14,7 @@
 #include "common/embedded.hpp"
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
+#include "io/h5_scalar.hpp"
 #include "io/output_path.hpp"
 #include "report/continuation_panels.hpp"
 #include "io/h5_stream.hpp"
@@ -90,15 +91,25 @@ std::vector<std::string> strings_or_empty(const H5Reader& r, const std::string& 
   return r.read_strings(path);
 }
 
-// Every dataset below `group`, as paths relative to it ("a/b"), in name order.
-void walk(const H5Reader& r, const std::string& group, const std::string& prefix, std::vector<std::string>& out) {
+// Every dataset below `group`, as paths relative to it ("a/b"), in name order. phasmid nests
+// its groups at most four deep; a damaged file can link a group into itself, so the walk is
+// bounded in depth and in the number of datasets instead of following the cycle for ever.
+void walk(const H5Reader& r, const std::string& group, const std::string& prefix, std::vector<std::string>& out,
+          int depth = 0) {
+  constexpr int kMaxDepth = 16;
+  constexpr std::size_t kMaxDatasets = 1000000;
+  if (depth > kMaxDepth)
+    throw Error(r.path() + ": groups nested more than " + std::to_string(kMaxDepth) + " deep at " + group +
+                " (a damaged file: a group linked into itself?)");
   for (const auto& c : r.children(group)) {
     std::string full = group == "/" ? "/" + c : group + "/" + c;
     std::string rel = prefix.empty() ? c : prefix + "/" + c;
     if (r.is_group(full))
-      walk(r, full, rel, out);
+      walk(r, full, rel, out, depth + 1);
     else
       out.push_back(rel);
+    if (out.size() > kMaxDatasets)
+      throw Error(r.path() + ": more than " + std::to_string(kMaxDatasets) + " datasets below " + group);
   }
 }
 
@@ -310,7 +321,7 @@ void extract_features(const H5Reader& r, json& out) {
   for (const auto& name : names) {
     std::string p = "/features/" + name;
     if (is_numeric_dataset(r, p) && count(r.dims(p)) == 1) {
-      rows.push_back({{"name", name}, {"value", num(r.read_doubles(p)[0])}, {"units", units_of(r, p)}});
+      rows.push_back({{"name", name}, {"value", num(io::read_scalar(r, p))}, {"units", units_of(r, p)}});
     } else if (is_numeric_dataset(r, p) && count(r.dims(p)) <= 64) {  // e.g. phases of six legs
       rows.push_back({{"name", name}, {"value", nums(r.read_doubles(p))}, {"units", units_of(r, p)}});
     } else if (is_dataset(r, p) && is_string_dataset(r, p)) {

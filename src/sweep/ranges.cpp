@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "io/h5_scalar.hpp"
+
 namespace phasmid::sweep {
 
 std::vector<ParameterRange> one_at_a_time_ranges(const SweepSpec& spec, const std::vector<double>& feature) {
@@ -50,9 +52,9 @@ std::vector<ParameterRange> read_ranges_h5(const io::H5Reader& in) {
     r.parameter = name;
     r.values = in.read_doubles(g + "/values");
     for (double v : in.read_doubles(g + "/in_range")) r.in_range.push_back(v == 1.0 ? 1 : 0);
-    r.lower = in.read_doubles(g + "/lower").at(0);
-    r.upper = in.read_doubles(g + "/upper").at(0);
-    r.contiguous = in.read_doubles(g + "/contiguous").at(0) == 1.0;
+    r.lower = io::read_scalar(in, g + "/lower");
+    r.upper = io::read_scalar(in, g + "/upper");
+    r.contiguous = io::read_scalar(in, g + "/contiguous") == 1.0;
     out.push_back(std::move(r));
   }
   return out;

@@ -1,17 +1,27 @@
 #include "sweep/sweep_shard.hpp"
 
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
 #include "common/error.hpp"
 #include "config/sweep_inputs.hpp"
 #include "config/toml_util.hpp"
+#include "io/h5_scalar.hpp"
 #include "sweep/sweep_runner.hpp"
 #include "sweep/sweep_store.hpp"
 
 namespace phasmid::sweep {
 namespace {
+
+constexpr double kMaxShards = 1e6;  // more shards than any cluster has ranks
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
 
 std::string hex64(std::uint64_t v) {
   char buf[17];
@@ -35,9 +45,16 @@ ShardFile read_shard(const std::string& path) {
   f.path = path;
   f.fingerprint = r.read_string_attribute("/sweep_shard", "fingerprint");
   f.config_path = r.read_string_attribute("/sweep_shard", "config_path");
-  f.shard.index = static_cast<std::size_t>(r.read_double_attribute("/sweep_shard", "shard"));
-  f.shard.count = static_cast<std::size_t>(r.read_double_attribute("/sweep_shard", "shards"));
-  f.config_text = r.read_strings("/sweep_shard/config_text").at(0);
+  const double index = r.read_double_attribute("/sweep_shard", "shard");
+  const double count = r.read_double_attribute("/sweep_shard", "shards");
+  // Written by phasmid as i < N; read from a file, so checked before they size anything.
+  if (!(count >= 1 && count <= kMaxShards && count == std::floor(count) && index >= 0 && index < count &&
+        index == std::floor(index)))
+    throw Error(path + ": /sweep_shard declares shard " + number(index) + " of " + number(count) +
+                " (a damaged file: expected i/N with 0 <= i < N <= " + std::to_string(static_cast<long>(kMaxShards)) + ")");
+  f.shard.index = static_cast<std::size_t>(index);
+  f.shard.count = static_cast<std::size_t>(count);
+  f.config_text = io::read_scalar_string(r, "/sweep_shard/config_text");
   if (r.exists("/sweep_shard/sets")) f.sets = r.read_strings("/sweep_shard/sets");
   if (r.exists("/sweep_shard/records")) f.records = r.read_strings("/sweep_shard/records");
   return f;
@@ -79,8 +96,9 @@ Shard parse_shard(const std::string& text) {
   Shard s;
   unsigned long i = 0, n = 0;
   char tail = 0;
-  if (std::sscanf(text.c_str(), "%lu/%lu%c", &i, &n, &tail) != 2 || n == 0 || i >= n || text[0] == '-')
-    throw Error("--shard '" + text + "': expected i/N with 0 <= i < N (e.g. 0/4)");
+  if (std::sscanf(text.c_str(), "%lu/%lu%c", &i, &n, &tail) != 2 || n == 0 || i >= n || text[0] == '-' ||
+      static_cast<double>(n) > kMaxShards)
+    throw Error("--shard '" + text + "': expected i/N with 0 <= i < N <= 1000000 (e.g. 0/4)");
   s.index = i;
   s.count = n;
   return s;

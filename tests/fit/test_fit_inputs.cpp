@@ -219,3 +219,20 @@ TEST(FitConfig, EveryExampleFitConfigBuildsItsProblem) {
     }
   }
 }
+
+// A parameter vector whose run leaves the joint's admissible range (docs/model.md "Admissible
+// ranges") is a failed evaluation with the reason, not a residual: b_v = 0.01 g/s lets the
+// Section 3.1 mechanics swing far beyond +-180 deg, while the start (Table A.14) evaluates.
+TEST(FitEvaluation, ARunBeyondTheJointRangeIsAFailedEvaluation) {
+  auto f = fittest::load_shipped_fit("configs/fit_fti_section31.toml");
+  auto params = fittest::fti_parameters(*f.model, 0.01 / 12.5, 5.0);  // b_v down to 0.01 g/s
+  fit::FitProblem p(*f.model, params, f.spec.targets, f.spec.problem);
+  std::vector<double> x = p.start(), r(p.num_residuals());
+  std::string error;
+  ASSERT_TRUE(p.evaluate(x.data(), r.data(), nullptr, &error)) << error;
+  ASSERT_EQ(p.estimated()[4].id, "middle.fti.b_v");
+  x[4] = fit::to_scaled(fit::Scale::Log10, 0.01);
+  EXPECT_FALSE(p.evaluate(x.data(), r.data(), nullptr, &error));
+  EXPECT_NE(error.find("joint middle.fti left its admissible range [-180, 180] deg"), std::string::npos) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+}

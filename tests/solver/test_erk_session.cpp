@@ -57,32 +57,12 @@ TEST(ErkSession, LocatesRootsInTheirDirection) {
   solver::SolverOptions so;
   so.integrator = solver::IntegratorKind::ErkDp5;
   so.rtol = so.atol = 1e-10;
-  auto rhs = [](sunrealtype, N_Vector y, N_Vector ydot, void*) {
-    NV_Ith_S(ydot, 0) = NV_Ith_S(y, 1);
-    NV_Ith_S(ydot, 1) = -NV_Ith_S(y, 0);
-    return 0;
-  };
-  auto g = [](sunrealtype, N_Vector y, sunrealtype* gout, void*) {
-    gout[0] = NV_Ith_S(y, 0);
-    gout[1] = NV_Ith_S(y, 0);
-    return 0;
-  };
   solver::SundialsContext ctx;
   const double y0[2] = {1.0, 0.0};
-  solver::ErkSession session(ctx.get(), so, y0, 2, rhs, nullptr);
-  session.init_roots({-1, +1}, g);
+  solver::ErkSession session(ctx.get(), so, y0, 2, test::oscillator_rhs, nullptr);
+  session.init_roots({-1, +1}, test::oscillator_roots);
   session.set_stop_time(5.0);
-  double t = 0.0;
-  int found[2] = {0, 0};
-  ASSERT_EQ(session.advance(5.0, &t, CV_NORMAL), CV_ROOT_RETURN);
-  session.root_info(found);
-  EXPECT_NEAR(t, M_PI / 2, 1e-8);
-  EXPECT_EQ(found[0], -1);
-  EXPECT_EQ(found[1], 0);
-  ASSERT_EQ(session.advance(5.0, &t, CV_NORMAL), CV_ROOT_RETURN);
-  session.root_info(found);
-  EXPECT_NEAR(t, 3 * M_PI / 2, 1e-8);
-  EXPECT_EQ(found[1], 1);
+  double t = test::expect_oscillator_roots(session);
   // The interpolant's derivative at the root: y1' = -sin(3 pi / 2) = 1.
   N_Vector d = session.work();
   ASSERT_GE(session.dky(t, 1, d), 0);
