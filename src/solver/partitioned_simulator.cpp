@@ -404,6 +404,9 @@ size_t& Partitioned::parts_done(size_t k) {
 // Hands the outputs every part has written to the sink, in order (they complete in order: each
 // part writes its outputs in order). Before the end only those no roll back can reach: a
 // trigger crossing not yet fed may put a command at its time and roll back the outputs after it.
+// (The part that passes a crossing last has not yet written the outputs after it when the
+// crossing is fed, so those are never complete then; the bound keeps it so, and output_row
+// refuses to rewrite an output handed on.)
 void Partitioned::flush_outputs(bool at_end) {
   double safe_until = INFINITY;
   if (!at_end)
