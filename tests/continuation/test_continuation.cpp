@@ -9,6 +9,7 @@
 #include <cmath>
 #include <memory>
 
+#include "common/error.hpp"
 #include "config/config.hpp"
 #include "continuation/continuation.hpp"
 #include "model/ode_model.hpp"
@@ -62,6 +63,7 @@ ContinuationOptions sl_options(double start, double end) {
   ContinuationOptions o = along("sl.lambda", start, end, 0.005, 0.01, tight({1, 0.0, +1}, 1500, 150));
   o.min_step = 1e-6;
   o.max_points = 200;
+  o.shooting.residual_rtol = 1e-13;
   return o;
 }
 
@@ -191,3 +193,31 @@ TEST(Continuation, RelayOscillatorMultipliersCarryTheSaltationTerms) {
 }
 
 }  // namespace
+
+// A converged cycle's state lies on the section only up to round-off; a run from a state one
+// ulp before a root's level finds that root within round-off of t = 0, and CVODES stops at its
+// next step ("root found at and very near" the start: CV_ILL_INPUT), as the three-leg
+// continuation did at its lift-off section. on_section and aligned_roots put the state and the
+// root exactly on the level, where CVODES ignores a zero at the start.
+TEST(Continuation, CycleRunStartingOneUlpBeforeASectionRoot) {
+  auto m = make("relay_oscillator");  // x rises from -a towards +1 under u = +1 at the start
+  const solver::RootSpec section{0, 0.4, +1};
+  const std::vector<double> y0 = {std::nextafter(section.level, -1.0), 0.0};
+  const solver::RootSpec root{0, std::nextafter(section.level, 1.0), 0};  // the feature's own rounding
+  solver::SolverOptions so;
+  so.rtol = so.atol = 1e-6;
+  const std::vector<double> p = m->parameters().values();
+  {
+    CycleModel cm(*m, y0, 0.0);
+    EXPECT_THROW(solver::Simulator(cm, so).run(cm.extend(p), {0.0, 30.0}, {{0, section.level, 0}}), Error);
+  }
+  CycleModel cm(*m, on_section(y0, section), 0.0);
+  const auto roots = aligned_roots({root}, section);
+  EXPECT_EQ(roots[0].level, section.level);
+  const solver::SolveResult r = solver::Simulator(cm, so).run(cm.extend(p), {0.0, 30.0}, roots);
+  // x = 1 - 0.6 exp(-t/10) reaches the switch at +0.5 after 10 ln(6/5) ms; the first root after
+  // the start is x falling back through 0.4 under u = -1.
+  ASSERT_FALSE(r.events.empty());
+  EXPECT_GT(r.events[0].t, 1.0);
+  EXPECT_EQ(r.events[0].direction, -1);
+}
