@@ -98,8 +98,10 @@ continuation::ContinuationOptions continuation_options(const Config& cfg, const 
                 (near.empty() ? "" : " (did you mean '" + near + "'?)"));
   }
   read_range(cfg, *range, o);
-  o.shooting.section = sensitivity::default_section(m);
+  // The default (the first joint angle's maxima) only where no section is given: a model
+  // without joint angles has none.
   if (auto* n = t->get("section")) o.shooting.section = named_section(cfg, *n, m, p);
+  else if (!t->get("section_state")) o.shooting.section = sensitivity::default_section(m);
   if (auto* n = t->get("section_state")) {
     try {
       o.shooting.section.state = m.state_index(text(cfg, *n, "section_state"));

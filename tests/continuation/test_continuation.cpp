@@ -192,6 +192,39 @@ TEST(Continuation, RelayOscillatorMultipliersCarryTheSaltationTerms) {
   }
 }
 
+// ---- relay oscillator with a flip ----------------------------------------------------------
+// flip = true: (p, q) turned by pi while u = +1, p grown by exp(alpha T/2) and q shrunk by
+// exp(-beta T/2) while u = -1 (closed form in src/scenario/kinds/relay_oscillator.cpp):
+// multipliers 1, exp(-k T), -exp(alpha T/2), -exp(-beta T/2); the third passes through -1 at
+// alpha = 0, a period doubling. T = 2 tau ln 3 at a = 0.5.
+TEST(Continuation, RelayFlipPeriodDoublingAtAlphaZero) {
+  auto m = make("relay_oscillator", "flip = true\n");
+  const ContinuationOptions o = along("relay.alpha", -0.02, 0.02, 0.005, 0.01, tight({0, 0.0, +1}, 300, 100));
+  const Branch b = continue_cycles(*m, m->parameters().values(), o);
+  ASSERT_GE(b.points.size(), 5u);
+  EXPECT_EQ(b.special.back().kind, "range_end");
+  const double tau = 10.0, k = 0.05, beta = 0.05, T = 2 * tau * std::log(3.0);
+  for (const auto& q : b.points) {
+    const double alpha = q.parameter;
+    EXPECT_NEAR(q.period_ms, T, 1e-6) << "alpha " << alpha;
+    ASSERT_EQ(q.multipliers.size(), 4u);
+    EXPECT_NEAR(q.multipliers[q.trivial].real(), 1.0, 1e-6) << "alpha " << alpha;
+    for (double expected : {std::exp(-k * T), -std::exp(alpha * T / 2), -std::exp(-beta * T / 2)}) {
+      double best = INFINITY;
+      for (size_t i = 0; i < q.multipliers.size(); ++i)
+        if (i != q.trivial) best = std::min(best, std::abs(q.multipliers[i] - expected));
+      EXPECT_LT(best, 1e-6) << "alpha " << alpha << ", multiplier " << expected;
+    }
+    EXPECT_EQ(q.stable, alpha < 0) << "alpha " << alpha;
+  }
+  const SpecialPoint* pd = find_kind(b, "period_doubling");
+  ASSERT_NE(pd, nullptr);
+  EXPECT_NEAR(pd->parameter, 0.0, 1e-7);
+  EXPECT_NEAR(pd->period_ms, T, 1e-6);
+  EXPECT_EQ(find_kind(b, "fold"), nullptr);
+  EXPECT_EQ(find_kind(b, "torus"), nullptr);
+}
+
 }  // namespace
 
 // A converged cycle's state lies on the section only up to round-off; a run from a state one
