@@ -144,18 +144,18 @@ TEST(Continuation, TorusBifurcationLocatedWhereTheComplexPairCrossesTheUnitCircl
 }
 
 // ---- van der Pol ----------------------------------------------------------------------------
-// Periods of x'' - mu (1 - x^2) x' + x = 0 to four decimals: T(1) = 6.6633, T(2) = 7.6299,
-// T(5) = 11.6122 (the commonly quoted values, e.g. Strogatz, Nonlinear Dynamics and Chaos,
-// Sect. 7.5 for T(1); high-precision periods over mu: Amore, "Computing the solutions of the van
-// der Pol equation to arbitrary precision", arXiv:2111.12198). Newton shooting at rtol 1e-11
-// gives 6.66329, 7.62987 and 11.61223, which is what pins the fourth decimal here: a value of
-// 11.6125 for T(5), sometimes quoted, is off in that digit. Section: x' falling through 0.
+// Periods of x'' - mu (1 - x^2) x' + x = 0. T(1) = 6.6632868593 (the published value:
+// Hairer, Norsett & Wanner, Solving Ordinary Differential Equations I, 2nd ed., Springer 1993,
+// Sect. I.16, Exercise 1: period 6.6632868593231301896996820305 of the cycle through y' = 0,
+// y = 2.00861986087484313650940188), asserted to 1e-6. T(2) = 7.6299 and T(5) = 11.6122 are
+// our own (Newton shooting at rtol 1e-11: 7.62987, 11.61223); no published table of them was
+// found to cite. Section: x' falling through 0.
 TEST(Continuation, VanDerPolPeriodAgainstMu) {
   auto m = make("van_der_pol");
   const ContinuationOptions o = along("vdp.mu", 1.0, 5.0, 0.25, 0.5, tight({1, 0.0, -1}, 200, 40));
   const Branch b = continue_cycles(*m, m->parameters().values(), o);
   ASSERT_EQ(b.special.back().kind, "range_end");
-  EXPECT_NEAR(b.points.front().period_ms, 6.6633, 5e-5);
+  EXPECT_NEAR(b.points.front().period_ms, 6.6632868593, 1e-6);
   EXPECT_NEAR(b.points.back().parameter, 5.0, 1e-12);
   EXPECT_NEAR(b.points.back().period_ms, 11.6122, 5e-5);
   for (size_t k = 1; k < b.points.size(); ++k) {
