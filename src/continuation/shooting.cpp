@@ -175,7 +175,7 @@ Correction correct_cycle(const model::OdeModel& model, const std::vector<double>
       continue;
     }
     const Eigen::VectorXd step = zn - z;
-    J += ((Fn - F) - J * step) * step.transpose() / step.squaredNorm();  // Broyden's update
+    if (step.squaredNorm() > 0) J += ((Fn - F) - J * step) * step.transpose() / step.squaredNorm();  // Broyden's update
     z = zn, F = Fn, fresh = false;
     if (max_abs(Fn, n) > 0.5 * res) s = eq.linearise(z), fresh = true, J = newton_matrix(s, sec, row), gr = growth(s.monodromy);
   }
