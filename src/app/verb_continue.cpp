@@ -17,7 +17,7 @@ namespace {
 struct ContinueArgs {
   std::string config, out = "continuation.h5";
   std::vector<std::string> sets;
-  bool quiet = false, json = false;
+  bool quiet = false, json = false, trace = false;
 };
 
 void print_json(const continuation::Branch& b) {
@@ -43,6 +43,10 @@ int run_continue(const ContinueArgs& a) {
                 << b.period_ms << " ms, " << (b.stable ? "stable" : "unstable") << ", " << b.newton_iterations
                 << " Newton iterations\n";
     };
+  if (a.trace)
+    options.shooting.on_iteration = [](int it, double res, bool monodromy) {
+      std::cerr << "phasmid continue:   iteration " << it << ": residual " << res << (monodromy ? " (monodromy)" : "") << "\n";
+    };
   const continuation::Branch branch = continuation::continue_cycles(*model, model->parameters().values(), options);
   io::H5Writer w(a.out);
   write_run_file(w, cfg, a.sets, *scenario);
@@ -63,6 +67,7 @@ const RegisterVerb reg{{"continue", "Follow a periodic orbit (gait cycle) as one
                           add_sets(sub, a->sets);
                           add_quiet(sub, a->quiet);
                           add_json(sub, a->json);
+                          sub.add_flag("--trace", a->trace, "print the residual of every corrector iteration");
                           return std::function<int()>([a] { return run_continue(*a); });
                         }}};
 }  // namespace

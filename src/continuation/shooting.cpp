@@ -141,6 +141,7 @@ Correction correct_cycle(const model::OdeModel& model, const std::vector<double>
     const double res = max_abs(F, n);
     report.iterations = it;
     report.residual = res;
+    if (o.on_iteration) o.on_iteration(it, res, fresh);
     // Integration errors reach y(T) amplified by the largest multiplier (unstable cycles).
     if (res < o.tolerance * gr) {  // the section's and the row's equations are linear: solved exactly
       if (!fresh) s = eq.linearise(z);

@@ -14,6 +14,7 @@
 // a cycle). A model with triggers starts every cycle at t0 = 0 with no triggered command
 // fired: its discrete mode at the section must be its mode at t = 0.
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,9 @@ struct ShootingOptions {
   // alike); 0: solver.rtol. A plain run costs 1/(n + 1) of one with the monodromy, so it can
   // afford a tolerance that puts the residual's integration noise below `tolerance`.
   double residual_rtol = 0.0;
+  // Called at each corrector iteration with its index, the residual max |y(T) - y0| and
+  // whether the monodromy was computed at that point (the verb's --trace); may be empty.
+  std::function<void(int, double, bool)> on_iteration;
 };
 
 struct Cycle {
