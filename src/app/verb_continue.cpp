@@ -38,10 +38,16 @@ int run_continue(const ContinueArgs& a) {
     throw Error(cfg.path + ": model type " + scenario->kind() + " is not an ODE system; continuation needs one");
   auto options = config::continuation_options(cfg, *model, config::simulation_settings(cfg, scenario.get()));
   if (!a.quiet)
-    options.on_point = [&options](const continuation::BranchPoint& b, size_t k) {
+    options.on_point = [&options, trace = a.trace](const continuation::BranchPoint& b, size_t k) {
       std::cerr << "phasmid continue: point " << k << ": " << options.parameter << " = " << b.parameter << ", period "
                 << b.period_ms << " ms, " << (b.stable ? "stable" : "unstable") << ", " << b.newton_iterations
                 << " Newton iterations\n";
+      if (!trace) return;
+      std::cerr << "phasmid continue:   |mu|:";
+      for (size_t i = 0; i < b.multipliers.size() && i < 6; ++i) std::cerr << " " << std::abs(b.multipliers[i]);
+      for (size_t j = 0; j < b.features.size() && j < options.features.size(); ++j)
+        std::cerr << (j ? ", " : "; ") << options.features[j] << " " << b.features[j];
+      std::cerr << "\n";
     };
   if (a.trace)
     options.shooting.on_iteration = [](int it, double res, bool monodromy) {
@@ -67,7 +73,7 @@ const RegisterVerb reg{{"continue", "Follow a periodic orbit (gait cycle) as one
                           add_sets(sub, a->sets);
                           add_quiet(sub, a->quiet);
                           add_json(sub, a->json);
-                          sub.add_flag("--trace", a->trace, "print the residual of every corrector iteration");
+                          sub.add_flag("--trace", a->trace, "print the residual of every corrector iteration, and each point's largest multipliers and tracked features");
                           return std::function<int()>([a] { return run_continue(*a); });
                         }}};
 }  // namespace
