@@ -132,10 +132,14 @@ Correction correct_cycle(const model::OdeModel& model, const std::vector<double>
   report = {};
   Equations eq{model, p, path, t0, z_pred, row, o, report, n};
   z[sec] = o.section.level;
-  Shot s = eq.linearise(z);
-  bool fresh = true;  // s is the linearisation at z
-  Eigen::MatrixXd J = newton_matrix(s, sec, row);
-  double gr = growth(s.monodromy);
+  Shot s;
+  bool fresh = false;  // s is the linearisation at z
+  Eigen::MatrixXd J;
+  double gr = 1.0;
+  auto relinearise = [&] {
+    s = eq.linearise(z), fresh = true, J = newton_matrix(s, sec, row), gr = growth(s.monodromy);
+  };
+  relinearise();
   Eigen::VectorXd F = eq.F(z);
   for (int it = 0;; ++it) {
     const double res = max_abs(F, n);
@@ -172,13 +176,13 @@ Correction correct_cycle(const model::OdeModel& model, const std::vector<double>
     }
     if (!(max_abs(Fn, n) <= res)) {
       if (fresh) break;  // no descent along Newton's own direction
-      s = eq.linearise(z), fresh = true, J = newton_matrix(s, sec, row), gr = growth(s.monodromy);
+      relinearise();
       continue;
     }
     const Eigen::VectorXd step = zn - z;
     if (step.squaredNorm() > 0) J += ((Fn - F) - J * step) * step.transpose() / step.squaredNorm();  // Broyden's update
     z = zn, F = Fn, fresh = false;
-    if (max_abs(Fn, n) > 0.5 * res) s = eq.linearise(z), fresh = true, J = newton_matrix(s, sec, row), gr = growth(s.monodromy);
+    if (max_abs(Fn, n) > 0.5 * res) relinearise();
   }
   out.z = z;
   out.shot = std::move(s);
