@@ -17,7 +17,7 @@ namespace {
 struct ContinueArgs {
   std::string config, out = "continuation.h5";
   std::vector<std::string> sets;
-  bool quiet = false, json = false;
+  bool quiet = false, json = false, trace = false;
 };
 
 void print_json(const continuation::Branch& b) {
@@ -38,10 +38,20 @@ int run_continue(const ContinueArgs& a) {
     throw Error(cfg.path + ": model type " + scenario->kind() + " is not an ODE system; continuation needs one");
   auto options = config::continuation_options(cfg, *model, config::simulation_settings(cfg, scenario.get()));
   if (!a.quiet)
-    options.on_point = [&options](const continuation::BranchPoint& b, size_t k) {
+    options.on_point = [&options, trace = a.trace](const continuation::BranchPoint& b, size_t k) {
       std::cerr << "phasmid continue: point " << k << ": " << options.parameter << " = " << b.parameter << ", period "
                 << b.period_ms << " ms, " << (b.stable ? "stable" : "unstable") << ", " << b.newton_iterations
                 << " Newton iterations\n";
+      if (!trace) return;
+      std::cerr << "phasmid continue:   |mu|:";
+      for (size_t i = 0; i < b.multipliers.size() && i < 6; ++i) std::cerr << " " << std::abs(b.multipliers[i]);
+      for (size_t j = 0; j < b.features.size() && j < options.features.size(); ++j)
+        std::cerr << (j ? ", " : "; ") << options.features[j] << " " << b.features[j];
+      std::cerr << "\n";
+    };
+  if (a.trace)
+    options.shooting.on_iteration = [](int it, double res, bool monodromy) {
+      std::cerr << "phasmid continue:   iteration " << it << ": residual " << res << (monodromy ? " (monodromy)" : "") << "\n";
     };
   const continuation::Branch branch = continuation::continue_cycles(*model, model->parameters().values(), options);
   io::H5Writer w(a.out);
@@ -63,6 +73,7 @@ const RegisterVerb reg{{"continue", "Follow a periodic orbit (gait cycle) as one
                           add_sets(sub, a->sets);
                           add_quiet(sub, a->quiet);
                           add_json(sub, a->json);
+                          sub.add_flag("--trace", a->trace, "print the residual of every corrector iteration, and each point's largest multipliers and tracked features");
                           return std::function<int()>([a] { return run_continue(*a); });
                         }}};
 }  // namespace

@@ -22,7 +22,7 @@ struct Context {
   size_t n = 0;
   const ContinuationOptions& o;
   Vec w;  // arclength weights (W)
-  long shots = 0;
+  long shots = 0, plain_shots = 0;
   bool integration_failed = false;
   // A solution crossing the section slower than this (in its direction) is refused: Newton
   // may converge to an equilibrium on the section (any T, f = 0) once the cycle is gone.
@@ -35,65 +35,28 @@ struct Solved {
   int iterations = 0;
 };
 
-Cycle to_cycle(const Vec& z, size_t n, double t0) {
-  return {std::vector<double>(z.data(), z.data() + n), z[n], z[n + 1], t0};
-}
-
-// Newton's matrix: [Phi - I, f(y(T)), dy/dlambda; e_section; row].
 Eigen::MatrixXd jacobian(const Context& c, const Shot& s, const Vec& row) {
-  const size_t n = c.n;
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + 2, n + 2);
-  J.topLeftCorner(n, n) = s.monodromy - Eigen::MatrixXd::Identity(n, n);
-  J.block(0, n, n, 1) = s.f_end;
-  J.block(0, n + 1, n, 1) = s.dy_dparam;
-  J(n, c.o.shooting.section.state) = 1.0;
-  J.row(n + 1) = row.transpose();
-  return J;
+  return newton_matrix(s, c.o.shooting.section.state, row);
 }
 
-// Newton from z on the shooting equations plus row . (z - z_pred) = 0. Damped: a step that
-// raises the residual is halved (up to four times) before the next linearisation.
-std::optional<Solved> correct(Context& c, Vec z, const Vec& z_pred, const Vec& row) {
+// The corrector (continuation/shooting.hpp) from z with row . (z - z_pred) = 0.
+std::optional<Solved> correct(Context& c, const Vec& z, const Vec& z_pred, const Vec& row) {
   const ShootingOptions& so = c.o.shooting;
-  const size_t n = c.n, sec = so.section.state;
-  Vec z_prev = z;
-  double prev = INFINITY;
-  int halvings = 0;
-  for (int it = 0;; ++it) {
-    Shot s;
-    try {
-      s = shoot(c.model, c.p, c.path, to_cycle(z, n, c.t0), so.solver);
-      ++c.shots;
-    } catch (const Error&) {  // integration failure, tangential switch
-      c.integration_failed = true;
-      return std::nullopt;
-    }
-    const double res = s.max_residual();
-    if (!std::isfinite(res) || (res > prev && halvings < 4)) {
-      if (it >= so.max_iterations || halvings >= 4) return std::nullopt;
-      z = z_prev + 0.5 * (z - z_prev);
-      ++halvings;
-      continue;
-    }
-    halvings = 0;
-    // Integration errors reach y(T) amplified by the largest multiplier (unstable cycles).
-    const double tol = so.tolerance * growth(s.monodromy);
-    if (res < tol && std::abs(z[sec] - so.section.level) < so.tolerance) {
-      const double dir = so.section.direction == 0 ? 1.0 : so.section.direction;
-      const double rate = so.section.direction == 0 ? std::abs(s.f_end[sec]) : dir * s.f_end[sec];
-      if (!(rate > c.min_rate)) return std::nullopt;
-      return Solved{z, std::move(s), it};
-    }
-    if (it >= so.max_iterations) return std::nullopt;
-    Vec r(n + 2);
-    r.head(n) = s.residual;
-    r[n] = z[sec] - so.section.level;
-    r[n + 1] = row.dot(z - z_pred);
-    z_prev = z;
-    prev = res;
-    z -= jacobian(c, s, row).colPivHouseholderQr().solve(r);
-    if (!(z[n] > 0.0)) z[n] = 0.5 * z_prev[n];
+  NewtonReport rep;
+  Correction r;
+  try {
+    r = correct_cycle(c.model, c.p, c.path, c.t0, z, z_pred, row, so, rep);
+  } catch (const Error&) {  // integration failure, tangential switch
+    c.integration_failed = true;
   }
+  c.shots += rep.shots;
+  c.plain_shots += rep.plain_shots;
+  if (c.integration_failed || !rep.converged) return std::nullopt;
+  const size_t sec = so.section.state;
+  const double dir = so.section.direction == 0 ? 1.0 : so.section.direction;
+  const double rate = so.section.direction == 0 ? std::abs(r.shot.f_end[sec]) : dir * r.shot.f_end[sec];
+  if (!(rate > c.min_rate)) return std::nullopt;
+  return Solved{r.z, std::move(r.shot), rep.iterations};
 }
 
 // Unit tangent of the branch in weighted coordinates, oriented along `dir` (weighted).
@@ -123,7 +86,8 @@ CycleRun run_cycle(const Context& c, const Vec& z) {
   const size_t n = c.n;
   std::vector<double> p = c.p;
   c.path.apply(p, z[n + 1]);
-  CycleModel cm(c.model, std::vector<double>(z.data(), z.data() + n), c.t0);
+  const solver::RootSpec& section = c.o.shooting.section;
+  CycleModel cm(c.model, on_section(std::vector<double>(z.data(), z.data() + n), section), c.t0);
   const std::vector<double> pe = cm.extend(p);
   const double T = z[n];
   std::vector<double> times;
@@ -131,7 +95,7 @@ CycleRun run_cycle(const Context& c, const Vec& z) {
   times.push_back(c.o.feature_cycles * T);
   solver::SolverOptions so = c.o.shooting.solver;
   so.progress = false;
-  const solver::SolveResult r = solver::Simulator(cm, so).run(pe, times, features::feature_roots(cm, pe));
+  const solver::SolveResult r = solver::Simulator(cm, so).run(pe, times, aligned_roots(features::feature_roots(cm, pe), section));
   CycleRun out;
   for (size_t i = 0; i < n; ++i) {
     double lo = INFINITY, hi = -INFINITY;
@@ -469,6 +433,7 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
     }
   }
   br.shots = c.shots;
+  br.plain_shots = c.plain_shots;
   br.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   return br;
 }

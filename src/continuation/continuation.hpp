@@ -73,7 +73,8 @@ struct Branch {
   std::vector<SpecialPoint> special;  // in branch order; the last one says how the branch ended
   solver::RootSpec section{0, 0.0, 0};
   std::string start_note;  // how the first cycle converged (residual, Newton iterations)
-  long shots = 0;         // integrations with sensitivities (Newton iterations, all tries)
+  long shots = 0;         // integrations with sensitivities (monodromy; all tries)
+  long plain_shots = 0;   // integrations without (the quasi-Newton residuals)
   double seconds = 0.0;   // wall time
 };
 

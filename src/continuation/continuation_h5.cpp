@@ -59,6 +59,7 @@ void write_branch_h5(io::H5Writer& out, const model::OdeModel& model, const Bran
   out.set_attribute(g, "parameter_unit", b.parameter_unit);
   out.set_attribute(g, "end", b.special.empty() ? std::string() : b.special.back().kind);
   out.set_attribute(g, "shots", static_cast<double>(b.shots));
+  out.set_attribute(g, "plain_shots", static_cast<double>(b.plain_shots));
   out.set_attribute(g, "seconds", b.seconds);
   out.set_attribute(g, "start", b.start_note);
   out.set_attribute(g, "section", model.states().at(b.section.state).name +
@@ -93,7 +94,8 @@ std::string format_summary(const Branch& b) {
   if (!b.points.empty())
     s << " from " << b.points.front().parameter << " (period " << b.points.front().period_ms << " ms) to "
       << b.points.back().parameter << " (period " << b.points.back().period_ms << " ms)";
-  s << "; " << b.shots << " shooting integrations in " << b.seconds << " s\n";
+  s << "; " << b.shots << " integrations with the monodromy and " << b.plain_shots << " without in " << b.seconds
+    << " s\n";
   if (!b.start_note.empty()) s << "  " << b.start_note << "\n";
   for (const auto& sp : b.special)
     s << "  " << sp.kind << " at " << b.parameter << " = " << sp.parameter << " " << b.parameter_unit << ", period "

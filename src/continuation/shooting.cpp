@@ -46,34 +46,160 @@ Shot shoot(const model::OdeModel& model, std::vector<double> p, const ParameterP
   return s;
 }
 
+Eigen::VectorXd shooting_residual(const model::OdeModel& model, std::vector<double> p, const ParameterPath& path,
+                                  const Cycle& cycle, const ShootingOptions& o) {
+  path.apply(p, cycle.parameter);
+  CycleModel cm(model, cycle.y0, cycle.t0);
+  solver::SolverOptions so = o.solver;
+  so.progress = false;
+  if (o.residual_rtol > 0) {
+    so.atol *= o.residual_rtol / so.rtol;
+    so.rtol = o.residual_rtol;
+  }
+  const solver::SolveResult r = solver::Simulator(cm, so).run(cm.extend(p), {0.0, cycle.period_ms});
+  const size_t n = model.num_states(), k = r.t.size() - 1;
+  Eigen::VectorXd res(n);
+  for (size_t i = 0; i < n; ++i) res[i] = r.state(k, i) - cycle.y0[i];
+  return res;
+}
+
+Eigen::MatrixXd newton_matrix(const Shot& s, size_t sec, const Eigen::VectorXd& row) {
+  const Eigen::Index n = s.residual.size();
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + 2, n + 2);
+  J.topLeftCorner(n, n) = s.monodromy - Eigen::MatrixXd::Identity(n, n);
+  J.block(0, n, n, 1) = s.f_end;
+  if (s.dy_dparam.size() == n) J.block(0, n + 1, n, 1) = s.dy_dparam;
+  J(n, static_cast<Eigen::Index>(sec)) = 1.0;
+  J.row(n + 1) = row.transpose();
+  return J;
+}
+
+std::vector<double> on_section(std::vector<double> y0, const solver::RootSpec& section) {
+  y0[section.state] = section.level;
+  return y0;
+}
+
+std::vector<solver::RootSpec> aligned_roots(std::vector<solver::RootSpec> roots, const solver::RootSpec& section) {
+  for (auto& r : roots)
+    if (r.state == section.state && std::abs(r.level - section.level) <= 1e-12 * std::max(1.0, std::abs(section.level)))
+      r.level = section.level;
+  return roots;
+}
+
+namespace {
+
+// The cycle equations' residual F(z) (n + 2 rows) and its linearisation, with the counters.
+struct Equations {
+  const model::OdeModel& model;
+  const std::vector<double>& p;
+  const ParameterPath& path;
+  double t0;
+  const Eigen::VectorXd& z_pred;
+  const Eigen::VectorXd& row;
+  const ShootingOptions& o;
+  NewtonReport& report;
+  size_t n;
+
+  Cycle cycle(const Eigen::VectorXd& z) const {
+    return {std::vector<double>(z.data(), z.data() + n), z[n], z.size() > static_cast<Eigen::Index>(n + 1) ? z[n + 1] : 0.0, t0};
+  }
+  Eigen::VectorXd F(const Eigen::VectorXd& z) const {
+    Eigen::VectorXd f(n + 2);
+    f.head(n) = shooting_residual(model, p, path, cycle(z), o);
+    ++report.plain_shots;
+    f[n] = z[o.section.state] - o.section.level;
+    f[n + 1] = row.dot(z - z_pred);
+    return f;
+  }
+  Shot linearise(const Eigen::VectorXd& z) const {
+    ++report.shots;
+    return shoot(model, p, path, cycle(z), o.solver);
+  }
+};
+
+double max_abs(const Eigen::VectorXd& f, size_t n) {
+  const double m = f.head(static_cast<Eigen::Index>(n)).cwiseAbs().maxCoeff();
+  return std::isfinite(m) ? m : INFINITY;
+}
+
+}  // namespace
+
+Correction correct_cycle(const model::OdeModel& model, const std::vector<double>& p, const ParameterPath& path,
+                         double t0, Eigen::VectorXd z, const Eigen::VectorXd& z_pred, const Eigen::VectorXd& row,
+                         const ShootingOptions& o, NewtonReport& report) {
+  const size_t n = model.num_states(), sec = o.section.state;
+  Correction out;
+  report = {};
+  Equations eq{model, p, path, t0, z_pred, row, o, report, n};
+  z[sec] = o.section.level;
+  Shot s;
+  bool fresh = false;  // s is the linearisation at z
+  Eigen::MatrixXd J;
+  double gr = 1.0;
+  auto relinearise = [&] {
+    s = eq.linearise(z), fresh = true, J = newton_matrix(s, sec, row), gr = growth(s.monodromy);
+  };
+  relinearise();
+  Eigen::VectorXd F = eq.F(z);
+  for (int it = 0;; ++it) {
+    const double res = max_abs(F, n);
+    report.iterations = it;
+    report.residual = res;
+    if (o.on_iteration) o.on_iteration(it, res, fresh);
+    // Integration errors reach y(T) amplified by the largest multiplier (unstable cycles).
+    if (res < o.tolerance * gr) {  // the section's and the row's equations are linear: solved exactly
+      if (!fresh) s = eq.linearise(z);
+      // The monodromy at z (for the multipliers) also gives one Newton step: it takes the
+      // residual far below the tolerance where the cycle is weakly attracting (near a Hopf
+      // point a residual at the tolerance is a much larger error in the state). The step is
+      // O(tolerance): the monodromy at z stands for the one at the polished z.
+      Eigen::VectorXd zn = z - newton_matrix(s, sec, row).colPivHouseholderQr().solve(F);
+      zn[sec] = o.section.level;
+      const Eigen::VectorXd Fn = eq.F(zn);
+      if (max_abs(Fn, n) < res) z = zn, F = Fn, report.residual = max_abs(Fn, n);
+      s.residual = F.head(n);
+      report.converged = true;
+      out.z = z;
+      out.shot = std::move(s);
+      return out;
+    }
+    if (it >= o.max_iterations) break;
+    Eigen::VectorXd dz = -J.colPivHouseholderQr().solve(F);
+    Eigen::VectorXd zn, Fn;
+    int halvings = 0;
+    for (;; ++halvings, dz *= 0.5) {
+      zn = z + dz;
+      zn[sec] = o.section.level;
+      if (!(zn[n] > 0.0)) zn[n] = 0.5 * z[n];
+      Fn = eq.F(zn);
+      if (max_abs(Fn, n) <= res || halvings >= 4) break;
+    }
+    if (!(max_abs(Fn, n) <= res)) {
+      if (fresh) break;  // no descent along Newton's own direction
+      relinearise();
+      continue;
+    }
+    const Eigen::VectorXd step = zn - z;
+    if (step.squaredNorm() > 0) J += ((Fn - F) - J * step) * step.transpose() / step.squaredNorm();  // Broyden's update
+    z = zn, F = Fn, fresh = false;
+    if (max_abs(Fn, n) > 0.5 * res) relinearise();
+  }
+  out.z = z;
+  out.shot = std::move(s);
+  return out;
+}
+
 Cycle newton_fixed_parameter(const model::OdeModel& model, const std::vector<double>& p, const Cycle& guess,
                              const ShootingOptions& o, NewtonReport& report, Shot* shot_out) {
-  const size_t n = model.num_states(), sec = o.section.state;
-  Cycle c = guess;
-  report = {};
-  for (int it = 0;; ++it) {
-    Shot s = shoot(model, p, {}, c, o.solver);
-    report.iterations = it;
-    report.residual = s.max_residual();
-    const double tol = o.tolerance * growth(s.monodromy);
-    if (report.residual < tol && std::abs(c.y0[sec] - o.section.level) < o.tolerance) {
-      report.converged = true;
-      if (shot_out) *shot_out = std::move(s);
-      return c;
-    }
-    if (it >= o.max_iterations) return c;
-    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + 1, n + 1);
-    J.topLeftCorner(n, n) = s.monodromy - Eigen::MatrixXd::Identity(n, n);
-    J.topRightCorner(n, 1) = s.f_end;
-    J(n, sec) = 1.0;
-    Eigen::VectorXd rhs(n + 1);
-    rhs.head(n) = -s.residual;
-    rhs[n] = -(c.y0[sec] - o.section.level);
-    const Eigen::VectorXd d = J.colPivHouseholderQr().solve(rhs);
-    for (size_t i = 0; i < n; ++i) c.y0[i] += d[i];
-    c.period_ms += d[n];
-    if (!(c.period_ms > 0.0)) return c;
-  }
+  const size_t n = model.num_states();
+  Eigen::VectorXd z(n + 2), row = Eigen::VectorXd::Zero(n + 2);
+  for (size_t i = 0; i < n; ++i) z[i] = guess.y0[i];
+  z[n] = guess.period_ms;
+  z[n + 1] = guess.parameter;
+  row[n + 1] = 1.0;
+  Correction c = correct_cycle(model, p, {}, guess.t0, z, z, row, o, report);
+  if (shot_out && report.converged) *shot_out = std::move(c.shot);
+  return {std::vector<double>(c.z.data(), c.z.data() + n), c.z[n], guess.parameter, guess.t0};
 }
 
 Cycle find_cycle(const model::OdeModel& model, const std::vector<double>& p, const ShootingOptions& o,

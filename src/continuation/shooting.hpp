@@ -14,6 +14,7 @@
 // a cycle). A model with triggers starts every cycle at t0 = 0 with no triggered command
 // fired: its discrete mode at the section must be its mode at t = 0.
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -48,7 +49,14 @@ struct ShootingOptions {
   double max_period_ms = 2000.0;  // search window for the first period after the transient
   double tolerance = 1e-7;        // converged when max_i |y_i(T) - y0_i| < tolerance * growth(Phi) (state units)
   int max_iterations = 12;
-  solver::SolverOptions solver;
+  solver::SolverOptions solver;   // the runs with sensitivities (monodromy)
+  // Relative tolerance of the plain runs that evaluate the residual y(T) - y0 (atol scaled
+  // alike); 0: solver.rtol. A plain run costs 1/(n + 1) of one with the monodromy, so it can
+  // afford a tolerance that puts the residual's integration noise below `tolerance`.
+  double residual_rtol = 0.0;
+  // Called at each corrector iteration with its index, the residual max |y(T) - y0| and
+  // whether the monodromy was computed at that point (the verb's --trace); may be empty.
+  std::function<void(int, double, bool)> on_iteration;
 };
 
 struct Cycle {
@@ -76,7 +84,39 @@ struct NewtonReport {
   int iterations = 0;
   double residual = 0.0;  // max |y(T) - y0| at the returned cycle
   bool converged = false;
+  long shots = 0, plain_shots = 0;  // integrations with sensitivities / without
 };
+
+// y(T) - y0 by one plain integration (no sensitivities) at ShootingOptions::residual_rtol.
+Eigen::VectorXd shooting_residual(const model::OdeModel& model, std::vector<double> p, const ParameterPath& path,
+                                  const Cycle& cycle, const ShootingOptions& options);
+
+// The corrector on z = (y0, T, lambda): y(T; y0, lambda) - y0 = 0, y0[s] = level and
+// row . (z - z_pred) = 0 (row = e_lambda: lambda fixed). Quasi-Newton: the monodromy is
+// computed at the start (one run with sensitivities), the iteration continues with Broyden's
+// rank-one updates of Newton's matrix and plain runs for the residual; a step that raises the
+// residual is halved (up to four times), and the monodromy is recomputed where the residual
+// falls by less than half or halving fails. At the converged z one more run with sensitivities
+// gives `shot` (monodromy, f, dy/dlambda: the multipliers), its residual the plain run's.
+// `report` counts the runs (also when an integration fails: then Error is thrown).
+struct Correction {
+  Eigen::VectorXd z;
+  Shot shot;
+};
+Correction correct_cycle(const model::OdeModel& model, const std::vector<double>& p, const ParameterPath& path,
+                         double t0, Eigen::VectorXd z, const Eigen::VectorXd& z_pred, const Eigen::VectorXd& row,
+                         const ShootingOptions& options, NewtonReport& report);
+
+// Newton's matrix [Phi - I, f(y(T)), dy/dlambda; e_section; row] (a zero lambda column
+// without a parameter).
+Eigen::MatrixXd newton_matrix(const Shot& shot, size_t section_state, const Eigen::VectorXd& row);
+
+// The state with its section component set exactly to the section's level, and roots on the
+// section's state at its level (within round-off) given exactly that level: a run from a state
+// a rounding error before a root's level finds the root within round-off of t = 0 and CVODES
+// stops ("root found at and very near" the start: CV_ILL_INPUT).
+std::vector<double> on_section(std::vector<double> y0, const solver::RootSpec& section);
+std::vector<solver::RootSpec> aligned_roots(std::vector<solver::RootSpec> roots, const solver::RootSpec& section);
 
 // Newton on (y0, T) at fixed parameters, from `guess`; `shot` (if given) receives the
 // linearisation at the returned cycle.

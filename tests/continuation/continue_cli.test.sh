@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # `phasmid continue` end to end on the test kinds: the Stuart-Landau branch in lambda ends at
-# the Hopf point lambda = 0 (docs/continuation.md), the file holds the documented /continuation
+# the Hopf point lambda = 0 (docs/continuation.md), the relay oscillator with flip = true reports
+# `period_doubling` at alpha = 0 (its multiplier -exp(alpha T/2) through -1), the file holds the documented /continuation
 # datasets, `phasmid report` draws the branch in headless Chromium without script errors, and
 # config errors name file:line. Usage: continue_cli.test.sh PHASMID SOURCE_DIR
 set -u
@@ -51,6 +52,36 @@ if [ -x /usr/bin/chromium ]; then
 else
   echo "FAIL chromium is required (apt-get install -y chromium)"; fail=1
 fi
+# The relay's flip (src/scenario/kinds/relay_oscillator.cpp): period_doubling at alpha = 0 within
+# 1e-7, period 2 tau ln 3 = 21.97225 ms (the JSON prints six digits).
+cat >"$tmp/flip.toml" <<'TOML'
+[model]
+type = "relay_oscillator"
+flip = true
+[simulation]
+rtol = 1e-11
+atol = 1e-11
+[continuation]
+parameter = "relay.alpha"
+range = [-0.02, 0.02]
+initial_step = 0.005
+max_step = 0.01
+section_state = "relay.x"
+section_level = 0.0
+section_direction = "rising"
+transient_ms = 300
+max_period_ms = 100
+tolerance = 1e-9
+TOML
+out=$("$PHASMID" continue "$tmp/flip.toml" -o "$tmp/flip.h5" -q --json) || { echo "FAIL continue flip: $out"; exit 1; }
+/usr/bin/python3 - "$out" <<'PY' || fail=1
+import json, math, sys
+d = json.loads(sys.argv[1])
+pd = [s for s in d["special_points"] if s["kind"] == "period_doubling"]
+ok = len(pd) == 1 and abs(pd[0]["parameter"]) < 1e-7 and abs(pd[0]["period_ms"] - 20 * math.log(3)) < 1e-4
+print("ok period_doubling" if ok else "FAIL period_doubling: %s" % d["special_points"])
+sys.exit(0 if ok else 1)
+PY
 # Errors name file:line and the key.
 sed 's/parameter = "sl.lambda"/parameter = "sl.lambdaa"/' "$tmp/sl.toml" >"$tmp/bad.toml"
 err=$("$PHASMID" continue "$tmp/bad.toml" -o "$tmp/bad.h5" -q 2>&1) && { echo "FAIL: unknown parameter accepted"; fail=1; }

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <memory>
 
+#include "common/error.hpp"
 #include "config/config.hpp"
 #include "continuation/continuation.hpp"
 #include "model/ode_model.hpp"
@@ -62,6 +63,7 @@ ContinuationOptions sl_options(double start, double end) {
   ContinuationOptions o = along("sl.lambda", start, end, 0.005, 0.01, tight({1, 0.0, +1}, 1500, 150));
   o.min_step = 1e-6;
   o.max_points = 200;
+  o.shooting.residual_rtol = 1e-13;
   return o;
 }
 
@@ -142,18 +144,18 @@ TEST(Continuation, TorusBifurcationLocatedWhereTheComplexPairCrossesTheUnitCircl
 }
 
 // ---- van der Pol ----------------------------------------------------------------------------
-// Periods of x'' - mu (1 - x^2) x' + x = 0 to four decimals: T(1) = 6.6633, T(2) = 7.6299,
-// T(5) = 11.6122 (the commonly quoted values, e.g. Strogatz, Nonlinear Dynamics and Chaos,
-// Sect. 7.5 for T(1); high-precision periods over mu: Amore, "Computing the solutions of the van
-// der Pol equation to arbitrary precision", arXiv:2111.12198). Newton shooting at rtol 1e-11
-// gives 6.66329, 7.62987 and 11.61223, which is what pins the fourth decimal here: a value of
-// 11.6125 for T(5), sometimes quoted, is off in that digit. Section: x' falling through 0.
+// Periods of x'' - mu (1 - x^2) x' + x = 0. T(1) = 6.6632868593 (the published value:
+// Hairer, Norsett & Wanner, Solving Ordinary Differential Equations I, 2nd ed., Springer 1993,
+// Sect. I.16, Exercise 1: period 6.6632868593231301896996820305 of the cycle through y' = 0,
+// y = 2.00861986087484313650940188), asserted to 1e-6. T(2) = 7.6299 and T(5) = 11.6122 are
+// our own (Newton shooting at rtol 1e-11: 7.62987, 11.61223); no published table of them was
+// found to cite. Section: x' falling through 0.
 TEST(Continuation, VanDerPolPeriodAgainstMu) {
   auto m = make("van_der_pol");
   const ContinuationOptions o = along("vdp.mu", 1.0, 5.0, 0.25, 0.5, tight({1, 0.0, -1}, 200, 40));
   const Branch b = continue_cycles(*m, m->parameters().values(), o);
   ASSERT_EQ(b.special.back().kind, "range_end");
-  EXPECT_NEAR(b.points.front().period_ms, 6.6633, 5e-5);
+  EXPECT_NEAR(b.points.front().period_ms, 6.6632868593, 1e-6);
   EXPECT_NEAR(b.points.back().parameter, 5.0, 1e-12);
   EXPECT_NEAR(b.points.back().period_ms, 11.6122, 5e-5);
   for (size_t k = 1; k < b.points.size(); ++k) {
@@ -190,4 +192,65 @@ TEST(Continuation, RelayOscillatorMultipliersCarryTheSaltationTerms) {
   }
 }
 
+// ---- relay oscillator with a flip ----------------------------------------------------------
+// flip = true: (p, q) turned by pi while u = +1, p grown by exp(alpha T/2) and q shrunk by
+// exp(-beta T/2) while u = -1 (closed form in src/scenario/kinds/relay_oscillator.cpp):
+// multipliers 1, exp(-k T), -exp(alpha T/2), -exp(-beta T/2); the third passes through -1 at
+// alpha = 0, a period doubling. T = 2 tau ln 3 at a = 0.5.
+TEST(Continuation, RelayFlipPeriodDoublingAtAlphaZero) {
+  auto m = make("relay_oscillator", "flip = true\n");
+  const ContinuationOptions o = along("relay.alpha", -0.02, 0.02, 0.005, 0.01, tight({0, 0.0, +1}, 300, 100));
+  const Branch b = continue_cycles(*m, m->parameters().values(), o);
+  ASSERT_GE(b.points.size(), 5u);
+  EXPECT_EQ(b.special.back().kind, "range_end");
+  const double tau = 10.0, k = 0.05, beta = 0.05, T = 2 * tau * std::log(3.0);
+  for (const auto& q : b.points) {
+    const double alpha = q.parameter;
+    EXPECT_NEAR(q.period_ms, T, 1e-6) << "alpha " << alpha;
+    ASSERT_EQ(q.multipliers.size(), 4u);
+    EXPECT_NEAR(q.multipliers[q.trivial].real(), 1.0, 1e-6) << "alpha " << alpha;
+    for (double expected : {std::exp(-k * T), -std::exp(alpha * T / 2), -std::exp(-beta * T / 2)}) {
+      double best = INFINITY;
+      for (size_t i = 0; i < q.multipliers.size(); ++i)
+        if (i != q.trivial) best = std::min(best, std::abs(q.multipliers[i] - expected));
+      EXPECT_LT(best, 1e-6) << "alpha " << alpha << ", multiplier " << expected;
+    }
+    EXPECT_EQ(q.stable, alpha < 0) << "alpha " << alpha;
+  }
+  const SpecialPoint* pd = find_kind(b, "period_doubling");
+  ASSERT_NE(pd, nullptr);
+  EXPECT_NEAR(pd->parameter, 0.0, 1e-7);
+  EXPECT_NEAR(pd->period_ms, T, 1e-6);
+  EXPECT_EQ(find_kind(b, "fold"), nullptr);
+  EXPECT_EQ(find_kind(b, "torus"), nullptr);
+}
+
 }  // namespace
+
+// A converged cycle's state lies on the section only up to round-off; a run from a state one
+// ulp before a root's level finds that root within round-off of t = 0, and CVODES stops at its
+// next step ("root found at and very near" the start: CV_ILL_INPUT), as the three-leg
+// continuation did at its lift-off section. on_section and aligned_roots put the state and the
+// root exactly on the level, where CVODES ignores a zero at the start.
+TEST(Continuation, CycleRunStartingOneUlpBeforeASectionRoot) {
+  auto m = make("relay_oscillator");  // x rises from -a towards +1 under u = +1 at the start
+  const solver::RootSpec section{0, 0.4, +1};
+  const std::vector<double> y0 = {std::nextafter(section.level, -1.0), 0.0};
+  const solver::RootSpec root{0, std::nextafter(section.level, 1.0), 0};  // the feature's own rounding
+  solver::SolverOptions so;
+  so.rtol = so.atol = 1e-6;
+  const std::vector<double> p = m->parameters().values();
+  {
+    CycleModel cm(*m, y0, 0.0);
+    EXPECT_THROW(solver::Simulator(cm, so).run(cm.extend(p), {0.0, 30.0}, {{0, section.level, 0}}), Error);
+  }
+  CycleModel cm(*m, on_section(y0, section), 0.0);
+  const auto roots = aligned_roots({root}, section);
+  EXPECT_EQ(roots[0].level, section.level);
+  const solver::SolveResult r = solver::Simulator(cm, so).run(cm.extend(p), {0.0, 30.0}, roots);
+  // x = 1 - 0.6 exp(-t/10) reaches the switch at +0.5 after 10 ln(6/5) ms; the first root after
+  // the start is x falling back through 0.4 under u = -1.
+  ASSERT_FALSE(r.events.empty());
+  EXPECT_GT(r.events[0].t, 1.0);
+  EXPECT_EQ(r.events[0].direction, -1);
+}
