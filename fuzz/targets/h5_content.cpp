@@ -16,12 +16,9 @@
 #include <vector>
 
 #include "build_info.hpp"
-#include "features/features.hpp"
 #include "fuzz_input.hpp"
+#include "h5_readers.hpp"
 #include "io/h5_file.hpp"
-#include "report/report.hpp"
-#include "sweep/ranges.hpp"
-#include "sweep/sweep_shard.hpp"
 
 namespace {
 using namespace phasmid;
@@ -237,15 +234,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (int k = 0; k < 32 && !in.empty() && !items.empty(); ++k) edit(items, in);
   const std::string path = write_file(items);
   if (path.empty()) return 0;
-  fuzz::attempt([&] { report::extract(path); });
-  fuzz::attempt([&] {
-    io::H5Reader in_file(path);
-    features::read_features_h5(in_file);
-    sweep::read_ranges_h5(in_file);
-  });
-  const std::string merged = fuzz::scratch_path("merged.h5");
-  fuzz::attempt([&] { sweep::merge_shards({path}, merged, "fuzz"); });
-  std::remove(merged.c_str());
+  fuzz::read_h5_as_phasmid_does(path);
   std::remove(path.c_str());
   return 0;
 }
