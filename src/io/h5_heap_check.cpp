@@ -180,11 +180,18 @@ void check_string_descriptors(hid_t file, hid_t dataset, hsize_t n, const std::s
   const std::uint64_t element = 4 + offset_width + 4;  // length, collection address, index
   if (start > raw.size() || n > (raw.size() - start) / element)
     throw Error(where + ": its " + std::to_string(n) + " strings lie beyond the end of the file");
-  for (hsize_t k = 0; k < n; ++k) {
-    const std::uint64_t length = raw.uint(start + k * element, 4);
-    if (length > raw.size())
-      throw Error(where + ": damaged string at element " + std::to_string(k) + " (declares " + std::to_string(length) +
-                  " bytes in a " + std::to_string(raw.size()) + "-byte file)");
+  constexpr hsize_t kPerRead = 4096;  // descriptors per read: one seek per block, not per string
+  std::vector<char> block;
+  for (hsize_t first = 0; first < n; first += kPerRead) {
+    const hsize_t count = std::min(kPerRead, n - first);
+    block.resize(static_cast<std::size_t>(count * element));
+    raw.read(start + first * element, block.data(), block.size());
+    for (hsize_t k = 0; k < count; ++k) {
+      const std::uint64_t length = little_endian<4>(block.data() + k * element);
+      if (length > raw.size())
+        throw Error(where + ": damaged string at element " + std::to_string(first + k) + " (declares " +
+                    std::to_string(length) + " bytes in a " + std::to_string(raw.size()) + "-byte file)");
+    }
   }
 }
 
