@@ -774,7 +774,9 @@
     }
     sets.push(lineDataset('unit circle |μ| = 1', [{ x: Math.min.apply(null, c.values), y: 1 }, { x: Math.max.apply(null, c.values), y: 1 }], 9, { borderDash: [4, 4] }));
     var idm = 'fig-continuation-multipliers';
-    var fm = figure(sec, idm, 'Moduli of the ' + shown + ' largest Floquet multipliers along the branch (the trivial multiplier 1 left out); a cycle is stable while all lie below 1.', 340);
+    var neutral = Math.max.apply(null, (c.neutral || [0]).concat([0]));
+    var fm = figure(sec, idm, 'Moduli of the ' + shown + ' largest Floquet multipliers along the branch (the trivial multiplier 1 left out); a cycle is stable while all lie below 1' +
+      (neutral > 0 ? ', apart from up to ' + neutral + ' neutral multiplier(s) within the neutral tolerance of 1 (a family of cycles: directions nothing pulls back), which are not counted.' : '.'), 340);
     draw(idm, fm, { type: 'line', data: { datasets: sets },
       options: { plugins: { title: titleOpt('Floquet multipliers |μ| against ' + c.parameter) },
         scales: { x: axis(xl, { type: 'linear' }), y: axis('|μ| (1)') } } });

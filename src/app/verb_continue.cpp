@@ -40,8 +40,9 @@ int run_continue(const ContinueArgs& a) {
   if (!a.quiet)
     options.on_point = [&options, trace = a.trace](const continuation::BranchPoint& b, size_t k) {
       std::cerr << "phasmid continue: point " << k << ": " << options.parameter << " = " << b.parameter << ", period "
-                << b.period_ms << " ms, " << (b.stable ? "stable" : "unstable") << ", " << b.newton_iterations
-                << " Newton iterations\n";
+                << b.period_ms << " ms, " << (b.stable ? "stable" : "unstable")
+                << (b.neutral.empty() ? "" : " (" + std::to_string(b.neutral.size()) + " neutral)") << ", "
+                << b.newton_iterations << " Newton iterations\n";
       if (!trace) return;
       std::cerr << "phasmid continue:   |mu|:";
       for (size_t i = 0; i < b.multipliers.size() && i < 6; ++i) std::cerr << " " << std::abs(b.multipliers[i]);

@@ -83,7 +83,7 @@ continuation::ContinuationOptions continuation_options(const Config& cfg, const 
   check_keys(cfg, *t, "continuation",
              {"parameter", "range", "initial_step", "min_step", "max_step", "max_points", "section", "section_state",
               "section_level", "section_direction", "transient_ms", "max_period_ms", "tolerance", "max_iterations",
-              "residual_rtol", "features", "feature_cycles", "max_period_factor", "hopf_amplitude_fraction", "locate_iterations", "linked"});
+              "residual_rtol", "neutral_tolerance", "features", "feature_cycles", "max_period_factor", "hopf_amplitude_fraction", "locate_iterations", "linked"});
   continuation::ContinuationOptions o;
   o.shooting.solver = sim.solver;
   o.shooting.solver.progress = false;
@@ -128,6 +128,7 @@ continuation::ContinuationOptions continuation_options(const Config& cfg, const 
   num("max_period_ms", o.shooting.max_period_ms);
   num("tolerance", o.shooting.tolerance);
   num("residual_rtol", o.shooting.residual_rtol);
+  num("neutral_tolerance", o.shooting.neutral_tolerance);
   num("feature_cycles", o.feature_cycles);
   num("max_period_factor", o.max_period_factor);
   num("hopf_amplitude_fraction", o.hopf_amplitude_fraction);
@@ -136,9 +137,10 @@ continuation::ContinuationOptions continuation_options(const Config& cfg, const 
   count("locate_iterations", o.locate_iterations);
   if (auto* n = t->get("features")) read_features(cfg, *n, m, o);
   if (auto* n = t->get("linked")) read_linked(cfg, *n, m, o);
-  if (!(o.shooting.tolerance > 0) || !(o.shooting.residual_rtol >= 0) || !(o.shooting.transient_ms >= 0) || !(o.shooting.max_period_ms > 0) ||
+  if (!(o.shooting.tolerance > 0) || !(o.shooting.residual_rtol >= 0) ||
+      !(o.shooting.neutral_tolerance >= 0 && o.shooting.neutral_tolerance < 1) || !(o.shooting.transient_ms >= 0) || !(o.shooting.max_period_ms > 0) ||
       !(o.feature_cycles >= 2))
-    throw Error(where(cfg, *t) + ": [continuation] needs tolerance > 0, transient_ms >= 0, max_period_ms > 0, feature_cycles >= 2");
+    throw Error(where(cfg, *t) + ": [continuation] needs tolerance > 0, 0 <= neutral_tolerance < 1, transient_ms >= 0, max_period_ms > 0, feature_cycles >= 2");
   return o;
 }
 

@@ -9,7 +9,7 @@ namespace phasmid::config {
 // Reads [continuation] (keys: parameter, range = [start, end], initial_step, min_step, max_step,
 // max_points, section = "<leg>.liftoff" | "<leg>.touchdown" | "angle_max" or section_state,
 // section_level, section_direction = "rising" | "falling", transient_ms, max_period_ms,
-// tolerance, max_iterations, features = [names], feature_cycles, max_period_factor,
+// tolerance, residual_rtol, neutral_tolerance, max_iterations, features = [names], feature_cycles, max_period_factor,
 // hopf_amplitude_fraction, locate_iterations, and a table linked = { "<parameter>" = [from, to] }
 // of parameters moved with it) with the solver of `sim` ([simulation]).
 // Errors name file:line and the key; an Error naming the file if the section is missing.

@@ -41,7 +41,8 @@ Eigen::MatrixXd jacobian(const Context& c, const Shot& s, const Vec& row) {
 
 // The corrector (continuation/shooting.hpp) from z with row . (z - z_pred) = 0.
 std::optional<Solved> correct(Context& c, const Vec& z, const Vec& z_pred, const Vec& row) {
-  const ShootingOptions& so = c.o.shooting;
+  ShootingOptions so = c.o.shooting;
+  so.scale = c.w.cwiseInverse();  // minimum-norm steps measure as the arclength does
   NewtonReport rep;
   Correction r;
   try {
@@ -64,7 +65,10 @@ Vec tangent(const Context& c, const Solved& s, const Vec& dir) {
   const Vec row = dir.cwiseProduct(c.w);
   Vec e = Vec::Zero(c.n + 2);
   e[c.n + 1] = 1.0;
-  Vec t = c.w.cwiseProduct(jacobian(c, s.shot, row).colPivHouseholderQr().solve(e));
+  // Minimum-norm where neutral directions are declared: the tangent then has no component in them.
+  const ShootingOptions& so = c.o.shooting;
+  const size_t neutral = neutral_count(s.shot.monodromy, so.neutral_tolerance);
+  Vec t = -c.w.cwiseProduct(newton_step(jacobian(c, s.shot, row), e, neutral, c.w.cwiseInverse(), so.section.state));
   t.normalize();
   return t.dot(dir) < 0 ? Vec(-t) : t;
 }
@@ -118,9 +122,11 @@ BranchPoint describe(const Context& c, const Solved& s, const Vec& t, const std:
   b.multipliers = multipliers(s.shot.monodromy);
   for (size_t i = 1; i < b.multipliers.size(); ++i)
     if (std::abs(b.multipliers[i] - 1.0) < std::abs(b.multipliers[b.trivial] - 1.0)) b.trivial = i;
+  for (size_t i = 0; i < b.multipliers.size(); ++i)
+    if (i != b.trivial && std::abs(b.multipliers[i] - 1.0) < c.o.shooting.neutral_tolerance) b.neutral.push_back(i);
   b.stable = true;
   for (size_t i = 0; i < b.multipliers.size(); ++i)
-    if (i != b.trivial && std::abs(b.multipliers[i]) >= 1.0) b.stable = false;
+    if (b.counted(i) && std::abs(b.multipliers[i]) >= 1.0) b.stable = false;
   const CycleRun run = run_cycle(c, s.z);
   double sum = 0.0;
   for (double r : run.ranges) sum += r * r;
@@ -141,7 +147,7 @@ std::complex<double> nearest(const BranchPoint& b, std::complex<double> target, 
   std::complex<double> best(NAN, NAN);
   for (size_t i = 0; i < b.multipliers.size(); ++i) {
     const auto m = b.multipliers[i];
-    if (i == b.trivial || !pick(m)) continue;
+    if (!b.counted(i) || !pick(m)) continue;
     if (std::isnan(best.real()) || std::abs(m - target) < std::abs(best - target)) best = m;
   }
   return best;
@@ -158,7 +164,7 @@ double bp_test(const BranchPoint& b) { return nearest(b, 1.0, [](auto m) { retur
 double torus_test(const BranchPoint& b) {
   double best = NAN;
   for (size_t i = 0; i < b.multipliers.size(); ++i)
-    if (i != b.trivial && !is_real(b.multipliers[i])) {
+    if (b.counted(i) && !is_real(b.multipliers[i])) {
       const double d = std::abs(b.multipliers[i]) - 1.0;
       if (std::isnan(best) || std::abs(d) < std::abs(best)) best = d;
     }
@@ -379,7 +385,8 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
   auto cur = correct(c, z0, z0, dir.cwiseProduct(c.w));
   if (!cur) throw Error("the cycle found at " + o.parameter + " = " + std::to_string(o.start) + " did not converge with the parameter column");
   c.min_rate = 1e-3 * std::abs(cur->shot.f_end[o.shooting.section.state]);
-  br.points.push_back(describe(c, *cur, tangent(c, *cur, dir), br.feature_names));
+  dir = tangent(c, *cur, dir);  // predictors follow the tangent
+  br.points.push_back(describe(c, *cur, dir, br.feature_names));
   if (o.on_point) o.on_point(br.points.back(), 0);
   const double lo = std::min(o.start, o.end), hi = std::max(o.start, o.end);
   double ds = o.initial_step, amax = br.points[0].amplitude;
@@ -406,9 +413,11 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
       }
       next.swap(landed);
     }
-    const Vec new_dir = c.w.cwiseProduct(next->z - cur->z).normalized();
+    // The next predictor: the tangent at the new point, oriented along the secant (so that
+    // the branch goes on through a fold, where the tangent's lambda component changes sign).
+    const Vec new_dir = tangent(c, *next, c.w.cwiseProduct(next->z - cur->z).normalized());
     try {  // the features' run and the location of special points integrate again
-      BranchPoint b = describe(c, *next, tangent(c, *next, new_dir), br.feature_names);
+      BranchPoint b = describe(c, *next, new_dir, br.feature_names);
       detect(c, br.points.back(), b, cur->z, next->z, br.feature_names, br.points.size(), br.special);
       br.points.push_back(std::move(b));
     } catch (const Error& e) {

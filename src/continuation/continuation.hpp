@@ -4,7 +4,8 @@
 // solved by Newton shooting (continuation/shooting.hpp) with the arclength condition
 // t . W (z - z_pred) = 0 on z = (y0, T, lambda), W a diagonal scaling that measures a step in
 // the parameter's unit (T relative to the first period and each state relative to its range
-// over the first cycle, both across the whole parameter range). Predictor: the secant of the
+// over the first cycle, both across the whole parameter range). Predictor: the tangent (the
+// null vector of Newton's matrix without the arclength row), oriented along the secant of the
 // last two points; the step grows after quick convergence and halves after a failure.
 // At each point: period, tracked features (features::compute_features on three periods of the
 // converged cycle, as `phasmid features` computes them), all Floquet multipliers, stability.
@@ -15,6 +16,7 @@
 // the period grows without bound, where the amplitude shrinks to zero (Hopf-like; the Hopf
 // parameter extrapolated from amplitude^2, linear in lambda near a Hopf point), or where
 // integration or Newton fails at the minimum step.
+#include <algorithm>
 #include <complex>
 #include <functional>
 #include <string>
@@ -51,7 +53,12 @@ struct BranchPoint {
   std::vector<double> y0;
   std::vector<std::complex<double>> multipliers;  // all, by decreasing modulus
   size_t trivial = 0;      // index of the multiplier closest to 1 (the phase direction)
-  bool stable = false;     // every other multiplier inside the unit circle
+  // Indices of further multipliers within ShootingOptions::neutral_tolerance of 1 (neutral
+  // directions of a family of cycles); empty where that tolerance is 0.
+  std::vector<size_t> neutral;
+  bool stable = false;     // every multiplier but the trivial and neutral ones inside the unit circle
+  // Whether multiplier i takes part in the stability and special-point tests.
+  bool counted(size_t i) const { return i != trivial && std::find(neutral.begin(), neutral.end(), i) == neutral.end(); }
   std::vector<double> features;  // per tracked feature, NaN where the cycle gives none
   int newton_iterations = 0;
   double residual = 0.0;   // max |y(T) - y0|

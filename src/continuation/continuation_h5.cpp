@@ -27,6 +27,9 @@ void write_multipliers(io::H5Writer& out, const std::string& g, const Branch& b,
   std::vector<std::int64_t> trivial;
   for (const auto& p : b.points) trivial.push_back(static_cast<std::int64_t>(p.trivial));
   out.write(g + "/trivial_multiplier", trivial, "column index");
+  std::vector<std::int64_t> neutral;
+  for (const auto& p : b.points) neutral.push_back(static_cast<std::int64_t>(p.neutral.size()));
+  out.write(g + "/neutral_multipliers", neutral, "count");
 }
 
 void write_special(io::H5Writer& out, const std::string& g, const Branch& b) {

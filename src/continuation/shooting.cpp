@@ -74,6 +74,29 @@ Eigen::MatrixXd newton_matrix(const Shot& s, size_t sec, const Eigen::VectorXd& 
   return J;
 }
 
+Eigen::VectorXd newton_step(const Eigen::MatrixXd& J, const Eigen::VectorXd& F, size_t neutral,
+                            const Eigen::VectorXd& scale, size_t section_state) {
+  if (neutral == 0) return -J.colPivHouseholderQr().solve(F);
+  const Eigen::Index m = J.rows();
+  const Eigen::VectorXd c = scale.size() == J.cols() ? scale : Eigen::VectorXd::Ones(J.cols());
+  Eigen::VectorXd r = Eigen::VectorXd::Ones(m);  // 1 / typical size of each row's residual
+  for (Eigen::Index i = 0; i + 2 < m; ++i) r[i] = 1.0 / c[i];
+  r[m - 2] = 1.0 / c[static_cast<Eigen::Index>(section_state)];
+  const Eigen::MatrixXd A = r.asDiagonal() * J * c.asDiagonal();
+  Eigen::BDCSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::Index k = std::max<Eigen::Index>(0, A.cols() - static_cast<Eigen::Index>(neutral));
+  const auto& sv = svd.singularValues();
+  const Eigen::VectorXd coeff = (svd.matrixU().leftCols(k).transpose() * r.cwiseProduct(F)).cwiseQuotient(sv.head(k));
+  return -c.cwiseProduct(svd.matrixV().leftCols(k) * coeff);
+}
+
+size_t neutral_count(const Eigen::MatrixXd& monodromy, double neutral_tolerance) {
+  if (!(neutral_tolerance > 0)) return 0;
+  size_t near = 0;
+  for (const auto& m : multipliers(monodromy)) near += std::abs(m - 1.0) < neutral_tolerance;
+  return near > 0 ? near - 1 : 0;
+}
+
 std::vector<double> on_section(std::vector<double> y0, const solver::RootSpec& section) {
   y0[section.state] = section.level;
   return y0;
@@ -136,8 +159,10 @@ Correction correct_cycle(const model::OdeModel& model, const std::vector<double>
   bool fresh = false;  // s is the linearisation at z
   Eigen::MatrixXd J;
   double gr = 1.0;
+  size_t neutral = 0;  // neutral directions of the last monodromy, left out of the steps
   auto relinearise = [&] {
     s = eq.linearise(z), fresh = true, J = newton_matrix(s, sec, row), gr = growth(s.monodromy);
+    neutral = neutral_count(s.monodromy, o.neutral_tolerance);
   };
   relinearise();
   Eigen::VectorXd F = eq.F(z);
@@ -153,7 +178,7 @@ Correction correct_cycle(const model::OdeModel& model, const std::vector<double>
       // residual far below the tolerance where the cycle is weakly attracting (near a Hopf
       // point a residual at the tolerance is a much larger error in the state). The step is
       // O(tolerance): the monodromy at z stands for the one at the polished z.
-      Eigen::VectorXd zn = z - newton_matrix(s, sec, row).colPivHouseholderQr().solve(F);
+      Eigen::VectorXd zn = z + newton_step(newton_matrix(s, sec, row), F, neutral, o.scale, sec);
       zn[sec] = o.section.level;
       const Eigen::VectorXd Fn = eq.F(zn);
       if (max_abs(Fn, n) < res) z = zn, F = Fn, report.residual = max_abs(Fn, n);
@@ -164,7 +189,7 @@ Correction correct_cycle(const model::OdeModel& model, const std::vector<double>
       return out;
     }
     if (it >= o.max_iterations) break;
-    Eigen::VectorXd dz = -J.colPivHouseholderQr().solve(F);
+    Eigen::VectorXd dz = newton_step(J, F, neutral, o.scale, sec);
     Eigen::VectorXd zn, Fn;
     int halvings = 0;
     for (;; ++halvings, dz *= 0.5) {

@@ -54,6 +54,18 @@ struct ShootingOptions {
   // alike); 0: solver.rtol. A plain run costs 1/(n + 1) of one with the monodromy, so it can
   // afford a tolerance that puts the residual's integration noise below `tolerance`.
   double residual_rtol = 0.0;
+  // Neutral directions: a cycle that belongs to a family (legs whose relative phases nothing
+  // pulls back, two uncoupled oscillators) has further multipliers at 1 besides the trivial
+  // one, and Newton's matrix is singular in them up to integration error, so a full Newton
+  // step divides noise by a near-zero singular value. With neutral_tolerance > 0 the
+  // multipliers within it of 1 beyond the trivial one are neutral: the corrector and the
+  // tangent take minimum-norm steps with that many smallest singular values dropped (they move
+  // to the nearest member of the family, measured in `scale`), and the branch leaves them out
+  // of the stability and special-point tests. 0: every direction is solved (rank-revealing QR).
+  double neutral_tolerance = 0.0;
+  // Typical size of each unknown of z = (y0, T, lambda) for the minimum-norm steps (the
+  // continuation sets its arclength scaling W^-1); empty: 1 for each.
+  Eigen::VectorXd scale;
   // Called at each corrector iteration with its index, the residual max |y(T) - y0| and
   // whether the monodromy was computed at that point (the verb's --trace); may be empty.
   std::function<void(int, double, bool)> on_iteration;
@@ -106,6 +118,16 @@ struct Correction {
 Correction correct_cycle(const model::OdeModel& model, const std::vector<double>& p, const ParameterPath& path,
                          double t0, Eigen::VectorXd z, const Eigen::VectorXd& z_pred, const Eigen::VectorXd& row,
                          const ShootingOptions& options, NewtonReport& report);
+
+// The Newton step dz solving J dz = -F: rank-revealing QR where neutral = 0; else the
+// minimum-norm step in the variables z / scale (rows scaled alike: the residual's rows by their
+// state's scale, the section row by its state's, the last row as it is) with the `neutral`
+// smallest singular values dropped (ShootingOptions::neutral_tolerance).
+Eigen::VectorXd newton_step(const Eigen::MatrixXd& J, const Eigen::VectorXd& F, size_t neutral,
+                            const Eigen::VectorXd& scale = {}, size_t section_state = 0);
+
+// How many multipliers besides the one nearest 1 lie within neutral_tolerance of 1.
+size_t neutral_count(const Eigen::MatrixXd& monodromy, double neutral_tolerance);
 
 // Newton's matrix [Phi - I, f(y(T)), dy/dlambda; e_section; row] (a zero lambda column
 // without a parameter).

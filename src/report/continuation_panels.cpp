@@ -73,6 +73,7 @@ void extract_continuation(const io::H5Reader& r, json& out) {
   c["multipliers_real"] = rows(r, g + "/multipliers_real", n);
   c["multipliers_imag"] = rows(r, g + "/multipliers_imag", n);
   c["trivial"] = numbers(r.read_doubles(g + "/trivial_multiplier"));
+  if (r.exists(g + "/neutral_multipliers")) c["neutral"] = numbers(r.read_doubles(g + "/neutral_multipliers"));
   c["special"] = special_points(r, g + "/special_points");
   out["continuation"] = c;
 }

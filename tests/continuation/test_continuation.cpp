@@ -9,6 +9,8 @@
 #include <cmath>
 #include <memory>
 
+#include <Eigen/Dense>
+
 #include "common/error.hpp"
 #include "config/config.hpp"
 #include "continuation/continuation.hpp"
@@ -141,6 +143,79 @@ TEST(Continuation, TorusBifurcationLocatedWhereTheComplexPairCrossesTheUnitCircl
     EXPECT_NEAR(std::arg(pair), 1.3, 1e-6) << "a " << q.parameter;
     EXPECT_EQ(q.stable, q.parameter < 0) << "a " << q.parameter;
   }
+}
+
+// ---- a family of cycles: two uncoupled Stuart-Landau oscillators ---------------------------
+// pair = true, k = 0: every relative phase gives a cycle, so besides the trivial multiplier a
+// second one is exactly 1, and the radial ones are exp(-2 lambda T) twice. With
+// neutral_tolerance the predictor and the corrector take minimum-norm steps and keep the relative
+// phase the transient left (the initial phase2 = 1 rad), the second 1 is neutral (not unstable, no branch
+// point), and the branch runs to its end with the closed-form radius and multipliers.
+TEST(Continuation, NeutralDirectionOfAFamilyOfCyclesIsKeptAndNotCounted) {
+  auto m = make("stuart_landau", "pair = true\n");
+  ContinuationOptions o = sl_options(0.05, 0.01);
+  o.shooting.neutral_tolerance = 1e-4;
+  const Branch b = continue_cycles(*m, m->parameters().values(), o);
+  ASSERT_GE(b.points.size(), 4u);
+  ASSERT_EQ(b.special.size(), 1u);
+  EXPECT_EQ(b.special.back().kind, "range_end");
+  const double T = 100.0;
+  for (const auto& q : b.points) {
+    const double mu = std::exp(-2.0 * q.parameter * T);
+    ASSERT_EQ(q.multipliers.size(), 4u);
+    ASSERT_EQ(q.neutral.size(), 1u) << "lambda " << q.parameter;
+    EXPECT_NEAR(q.multipliers[q.trivial].real(), 1.0, 1e-6);
+    EXPECT_NEAR(q.multipliers[q.neutral[0]].real(), 1.0, 1e-6);
+    for (size_t i = 0; i < 4; ++i)
+      if (q.counted(i)) EXPECT_NEAR(q.multipliers[i].real(), mu, 1e-6) << "lambda " << q.parameter;
+    EXPECT_TRUE(q.stable) << "lambda " << q.parameter;
+    EXPECT_NEAR(q.period_ms, T, 1e-6);
+    EXPECT_NEAR(std::hypot(q.y0[2], q.y0[3]), std::sqrt(q.parameter), 1e-7);
+    // Kept to the isotropy of the arclength weights of x2 and y2 (their ranges over the sampled
+    // first cycle); a step in the family's direction would move it by O(0.1) rad per point.
+    EXPECT_NEAR(std::atan2(q.y0[3], q.y0[2]), 1.0, 1e-4) << "lambda " << q.parameter;
+  }
+  EXPECT_NEAR(b.points.back().parameter, 0.01, 1e-12);
+}
+
+// The coupled pair (k = 0.01 /ms) settles in phase; its antisymmetric perturbations decay k
+// faster on both sides: multipliers 1, exp(-2 k T), exp(-2 lambda T), exp(-2 (lambda + k) T).
+TEST(Continuation, CoupledStuartLandauPairMultipliersInClosedForm) {
+  auto m = make("stuart_landau", "pair = true\n");
+  std::vector<double> p = m->parameters().values();
+  p[m->parameters().index("sl.lambda")] = 0.05;
+  p[m->parameters().index("sl.k")] = 0.01;
+  NewtonReport rep;
+  Shot shot;
+  const Cycle c = find_cycle(*m, p, tight({1, 0.0, +1}, 1500, 150), rep, &shot);
+  ASSERT_TRUE(rep.converged);
+  const double T = 100.0, lambda = 0.05, k = 0.01;
+  EXPECT_NEAR(c.period_ms, T, 1e-6);
+  EXPECT_NEAR(c.y0[2], c.y0[0], 1e-7);
+  EXPECT_NEAR(c.y0[3], c.y0[1], 1e-7);
+  const auto mu = multipliers(shot.monodromy);
+  ASSERT_EQ(mu.size(), 4u);
+  const double expected[] = {1.0, std::exp(-2 * k * T), std::exp(-2 * lambda * T), std::exp(-2 * (lambda + k) * T)};
+  for (size_t i = 0; i < 4; ++i) EXPECT_NEAR(mu[i].real(), expected[i], 1e-6) << "multiplier " << i;
+  EXPECT_EQ(neutral_count(shot.monodromy, 1e-4), 0u);
+}
+
+// The minimum-norm step leaves a direction of near-zero singular value alone: J = Q diag(2, 1,
+// 0.5, 1e-10) Q^T with Q = H/2 (H the 4x4 Hadamard matrix); the QR step divides F's component
+// along the last direction by 1e-10, the step with one neutral direction drops it and solves the
+// rest exactly.
+TEST(Continuation, NewtonStepDropsNearZeroSingularDirections) {
+  Eigen::Matrix4d Q;
+  Q << 1, 1, 1, 1, 1, -1, 1, -1, 1, 1, -1, -1, 1, -1, -1, 1;
+  Q /= 2.0;
+  const Eigen::MatrixXd J = Q * Eigen::Vector4d(2.0, 1.0, 0.5, 1e-10).asDiagonal() * Q.transpose();
+  const Eigen::VectorXd F = Q * Eigen::Vector4d(0.4, -0.3, 0.1, 1e-6);
+  const Eigen::VectorXd full = newton_step(J, F, 0), min_norm = newton_step(J, F, 1);
+  EXPECT_NEAR(Q.col(3).dot(full), -1e4, 1.0);
+  EXPECT_NEAR(Q.col(3).dot(min_norm), 0.0, 1e-9);
+  EXPECT_NEAR(Q.col(0).dot(min_norm), -0.2, 1e-12);
+  EXPECT_NEAR(Q.col(1).dot(min_norm), 0.3, 1e-12);
+  EXPECT_NEAR(Q.col(2).dot(min_norm), -0.2, 1e-12);
 }
 
 // ---- van der Pol ----------------------------------------------------------------------------
