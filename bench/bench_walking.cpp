@@ -46,6 +46,9 @@ int main(int argc, char** argv) {
   so.rtol = so.atol = argc > 5 ? std::atof(argv[5]) : 1e-6;  // default: the three-leg configs' tolerance
   if (const char* e = std::getenv("BENCH_MAXORD")) so.max_order = std::atoi(e);
   if (std::getenv("BENCH_STALD")) so.stability_limit_detection = true;
+  if (const char* e = std::getenv("BENCH_THREADS")) so.threads = std::atoi(e);
+  if (const char* e = std::getenv("BENCH_WINDOW_MS")) so.window_ms = std::atof(e);
+  if (const char* e = std::getenv("BENCH_WINDOW_ORDER")) so.window_order = std::atoi(e);
   if (const char* e = std::getenv("BENCH_INTEGRATOR")) {
     const auto kind = solver::integrator_from_name(e);
     if (!kind) {
