@@ -49,6 +49,15 @@ int main(int argc, char** argv) {
   if (const char* e = std::getenv("BENCH_THREADS")) so.threads = std::atoi(e);
   if (const char* e = std::getenv("BENCH_WINDOW_MS")) so.window_ms = std::atof(e);
   if (const char* e = std::getenv("BENCH_WINDOW_ORDER")) so.window_order = std::atoi(e);
+  if (const char* e = std::getenv("BENCH_ATOL_UNITS")) {  // "1=1e-5,mV=1e-4"
+    for (std::string item, rest = e; !rest.empty();) {
+      const size_t comma = rest.find(',');
+      item = rest.substr(0, comma);
+      rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+      const size_t eq = item.find('=');
+      if (eq != std::string::npos) so.atol_by_unit.emplace_back(item.substr(0, eq), std::atof(item.c_str() + eq + 1));
+    }
+  }
   if (const char* e = std::getenv("BENCH_INTEGRATOR")) {
     const auto kind = solver::integrator_from_name(e);
     if (!kind) {

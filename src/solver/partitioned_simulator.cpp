@@ -249,7 +249,7 @@ void build_parts(Run& run, const model::OdeModel& model, const model::ModelParti
 }
 
 // Each part's integrator from y0, integrating towards the first stop.
-void start_sessions(Run& run, const std::vector<std::unique_ptr<SundialsContext>>& contexts,
+void start_sessions(Run& run, const model::OdeModel& model, const std::vector<std::unique_ptr<SundialsContext>>& contexts,
                     const SolverOptions& options, const std::vector<double>& y0, double first_stop) {
   for (size_t k = 0; k < run.parts.size(); ++k) {
     PartSolver& ps = *run.parts[k];
@@ -267,6 +267,7 @@ void start_sessions(Run& run, const std::vector<std::unique_ptr<SundialsContext>
       cv->set_linear_solver(LinearSystem::Dense, 0, 0, options.jacobian == JacobianKind::AutoDiff ? part_jac : nullptr);
       ps.session = std::move(cv);
     }
+    if (!options.atol_by_unit.empty()) ps.session->set_state_atol(state_atol(model, options, ps.states));
     std::vector<int> dirs;
     for (size_t r : ps.roots) dirs.push_back((*run.roots)[r].direction);
     ps.session->init_roots(dirs, part_roots);
@@ -670,6 +671,16 @@ void Partitioned::finish(const std::vector<double>& p) {
 
 }  // namespace
 
+// The absolute tolerance of each of `states` (SolverOptions::atol_by_unit).
+std::vector<double> state_atol(const model::OdeModel& model, const SolverOptions& options,
+                               const std::vector<size_t>& states) {
+  std::vector<double> atol(states.size(), options.atol);
+  for (size_t i = 0; i < states.size(); ++i)
+    for (const auto& [unit, value] : options.atol_by_unit)
+      if (model.states()[states[i]].unit == unit) atol[i] = value;
+  return atol;
+}
+
 SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPartition& P, const SolverOptions& options,
                             const std::vector<double>& p_given, const OutputTimes& output_times,
                             const std::vector<RootSpec>& caller_roots) {
@@ -689,7 +700,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
   run.roots = &roots;
   for (double v : schedule.p()) run.pK.emplace_back(v);
   build_parts(run, model, P, roots);
-  start_sessions(run, contexts, options, y0, schedule.next_stop());
+  start_sessions(run, model, contexts, options, y0, schedule.next_stop());
 
   SolveResult res;
   Partitioned driver(run, model, options, output_times, caller_roots.size(), y0, res);

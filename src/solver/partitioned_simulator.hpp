@@ -27,6 +27,11 @@
 
 namespace phasmid::solver {
 
+// The absolute tolerance of each of `states` (global indices): SolverOptions::atol_by_unit
+// by the state's unit, SolverOptions::atol for the others.
+std::vector<double> state_atol(const model::OdeModel& model, const SolverOptions& options,
+                               const std::vector<size_t>& states);
+
 SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPartition& partition,
                             const SolverOptions& options, const std::vector<double>& p,
                             const OutputTimes& output_times, const std::vector<RootSpec>& roots);

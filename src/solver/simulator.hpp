@@ -74,6 +74,9 @@ struct SolverOptions {
   // most window_order beyond their last step; the result depends on window_ms and
   // window_order, never on the thread count or timing (solver/partitioned_simulator.hpp).
   int threads = 1;
+  // Absolute tolerance by the unit of a state (StateInfo::unit: "mV", "1", "rad", ...) in place
+  // of atol; states of other units keep atol. Runs without sensitivities only.
+  std::vector<std::pair<std::string, double>> atol_by_unit;
   double window_ms = 0.25;
   int window_order = 3;
   bool progress = false;             // progress line on a terminal (stderr)
