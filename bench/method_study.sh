@@ -41,7 +41,7 @@ variant() {
   [ -n "$mn" ] && model="[model]\nmotoneuron = \"$mn\""
   grep -Ev "^(rtol|atol|integrator|partitioned|motoneuron) *=" "$cfg" |
     { [ -n "$tend" ] && grep -Ev "^(t_end_ms|discard_ms) *=" || cat; } |
-    sed -e "s/^\[simulation\]/$sim/" -e "s/^\[model\]/$model/"
+    sed -e "s|^\[simulation\]|$sim|" -e "s|^\[model\]|$model|"
 }
 
 # cpu_run TOML OUT_JSON: minimum CPU seconds over REPEATS runs; features to OUT_JSON.

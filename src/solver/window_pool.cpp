@@ -39,8 +39,10 @@ void WindowPool::work() {
   uint32_t seen = 0;
   for (;;) {
     uint32_t g = static_cast<uint32_t>(ticket_.load(std::memory_order_acquire) >> 32);
-    for (int s = 0; s < kSpinPolls && g == seen; ++s)
+    for (int s = 0; s < kSpinPolls && g == seen; ++s) {
+      if (s % 64 == 63) std::this_thread::yield();  // a caller sharing this core runs first
       g = static_cast<uint32_t>(ticket_.load(std::memory_order_acquire) >> 32);
+    }
     if (g == seen) {
       std::unique_lock<std::mutex> lock(m_);
       wake_.wait(lock, [&] { return stop_ || static_cast<uint32_t>(ticket_.load() >> 32) != seen; });
