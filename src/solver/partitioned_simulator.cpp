@@ -73,6 +73,7 @@ struct PartSolver {
   int snap_order = 0, snap_extrapolation_order = 0;
   std::vector<double> snap_coef;
   std::deque<StepPoly> history;
+  std::vector<std::vector<double>> spare;  // coefficient buffers of dropped steps, for reuse
   std::vector<Event> found_in_window;
   std::exception_ptr failure;
 
@@ -110,6 +111,10 @@ struct PartSolver {
     sp.t0 = tn - session->last_step();
     sp.tn = tn;
     sp.order = q;
+    if (!spare.empty()) {
+      sp.c = std::move(spare.back());
+      spare.pop_back();
+    }
     sp.c.resize(static_cast<size_t>(q + 1) * ns);
     double factorial = 1.0;
     for (int d = 0; d <= q; ++d) {
@@ -463,7 +468,10 @@ double Partitioned::advance_window(CommandSchedule& s) {
   for (auto& ps : run_.parts) {
     ps->take_snapshot(options_.window_order);
     // Steps ending before t_keep are never read again (outputs, events and roll-backs come later).
-    while (ps->history.size() > 1 && ps->history.front().tn < t_keep) ps->history.pop_front();
+    while (ps->history.size() > 1 && ps->history.front().tn < t_keep) {
+      ps->spare.push_back(std::move(ps->history.front().c));
+      ps->history.pop_front();
+    }
     if (ps->t < t1) todo.push_back(ps.get());
   }
   pool_.run(static_cast<int>(todo.size()), [&](int i) {
