@@ -253,6 +253,29 @@ void build_parts(Run& run, const model::OdeModel& model, const model::ModelParti
   }
 }
 
+// The roots of the step a part has just taken (flag CV_ROOT_RETURN at tret), each as an event
+// with the part's own states, to `take`: a second call in CV_NORMAL mode to the time reached
+// returns the step's remaining roots one by one and then y(t) without stepping.
+template <class Take>
+void step_roots(PartSolver& ps, int flag, double tret, size_t n, std::vector<int>& found, Take take) {
+  while (flag == CV_ROOT_RETURN) {
+    found.assign(ps.roots.size(), 0);
+    ps.session->root_info(found.data());
+    for (size_t r = 0; r < ps.roots.size(); ++r) {
+      if (!found[r]) continue;
+      Event e;
+      e.t = tret;
+      e.root = ps.roots[r];
+      e.direction = found[r];
+      e.y.assign(n, NAN);
+      for (size_t i = 0; i < ps.states.size(); ++i) e.y[ps.states[i]] = NV_Ith_S(ps.session->y(), i);  // y(tret)
+      take(std::move(e));
+    }
+    flag = ps.session->advance(ps.t, &tret, CV_NORMAL);
+    if (flag < 0) check_cvodes(flag, "CVode (roots of the last step)");
+  }
+}
+
 // Each part's integrator from y0, integrating towards the first stop.
 void start_sessions(Run& run, const model::OdeModel& model, const std::vector<std::unique_ptr<SundialsContext>>& contexts,
                     const SolverOptions& options, const std::vector<double>& y0, double first_stop) {
@@ -418,28 +441,11 @@ double Partitioned::advance(CommandSchedule& s) {
   return ps.t;
 }
 
-// Every root of this step is taken now, before another part steps on: a second call in
-// CV_NORMAL mode to the time reached returns the step's remaining roots one by one and then
-// y(t) without stepping. (Another part's next step could otherwise leave the time of a later
-// root of this step, where its state is interpolated.)
+// Every root of this step is taken now, before another part steps on (step_roots). (Another
+// part's next step could otherwise leave the time of a later root of this step, where its
+// state is interpolated.)
 void Partitioned::take_roots(PartSolver& ps, double tret) {
-  const size_t n = model_.num_states();
-  for (int f = flag_; f == CV_ROOT_RETURN;) {
-    found_.assign(ps.roots.size(), 0);
-    ps.session->root_info(found_.data());
-    for (size_t r = 0; r < ps.roots.size(); ++r) {
-      if (!found_[r]) continue;
-      Event e;
-      e.t = tret;
-      e.root = ps.roots[r];
-      e.direction = found_[r];
-      e.y.assign(n, NAN);
-      for (size_t i = 0; i < ps.states.size(); ++i) e.y[ps.states[i]] = NV_Ith_S(ps.session->y(), i);  // y(tret)
-      add_event(ps, std::move(e));
-    }
-    f = ps.session->advance(ps.t, &tret, CV_NORMAL);
-    if (f < 0) check_cvodes(f, "CVode (roots of the last step)");
-  }
+  step_roots(ps, flag_, tret, model_.num_states(), found_, [&](Event e) { add_event(ps, std::move(e)); });
 }
 
 // Event e of part ps (its own states filled in) into res.events, the trigger crossings to
@@ -508,21 +514,7 @@ void Partitioned::step_until(PartSolver& ps, const CommandSchedule& s, double t1
     if (flag < 0 || too_much_work) step_failed(ps, tret, flag, too_much_work);
     ps.t = flag == CV_TSTOP_RETURN ? s.next_stop() : ps.session->current_time();
     ps.record_step();
-    while (flag == CV_ROOT_RETURN) {  // every root of the step, as in take_roots
-      ps.session->root_info(found.data());
-      for (size_t r = 0; r < ps.roots.size(); ++r) {
-        if (!found[r]) continue;
-        Event e;
-        e.t = tret;
-        e.root = ps.roots[r];
-        e.direction = found[r];
-        e.y.assign(n, NAN);
-        for (size_t i = 0; i < ps.states.size(); ++i) e.y[ps.states[i]] = NV_Ith_S(ps.session->y(), i);
-        ps.found_in_window.push_back(std::move(e));
-      }
-      flag = ps.session->advance(ps.t, &tret, CV_NORMAL);
-      if (flag < 0) check_cvodes(flag, "CVode (roots of the last step)");
-    }
+    step_roots(ps, flag, tret, n, found, [&](Event e) { ps.found_in_window.push_back(std::move(e)); });
   }
 }
 
