@@ -17,7 +17,10 @@
 // either way). Times are the best of BENCH_REPEATS (default 3) runs.
 // Environment: BENCH_MAXORD=q limits the BDF order,
 // BENCH_STALD=1 switches on CVODES' stability limit detection (both measured, not adopted),
-// BENCH_INTEGRATOR=name selects the integrator ([simulation] integrator names: erk_dp5, ...).
+// BENCH_INTEGRATOR=name selects the integrator ([simulation] integrator names: erk_dp5, ...),
+// BENCH_THREADS, BENCH_WINDOW_MS, BENCH_WINDOW_ORDER the partitioned run's threads and window
+// (SolverOptions::threads, window_ms, window_order), BENCH_ATOL_UNITS="1=1e-6,mV=1e-5" the
+// absolute tolerances by unit (SolverOptions::atol_by_unit). CPU s is the process's, all threads.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
