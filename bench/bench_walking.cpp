@@ -17,7 +17,10 @@
 // either way). Times are the best of BENCH_REPEATS (default 3) runs.
 // Environment: BENCH_MAXORD=q limits the BDF order,
 // BENCH_STALD=1 switches on CVODES' stability limit detection (both measured, not adopted),
-// BENCH_INTEGRATOR=name selects the integrator ([simulation] integrator names: erk_dp5, ...).
+// BENCH_INTEGRATOR=name selects the integrator ([simulation] integrator names: erk_dp5, ...),
+// BENCH_THREADS, BENCH_WINDOW_MS, BENCH_WINDOW_ORDER the partitioned run's threads and window
+// (SolverOptions::threads, window_ms, window_order), BENCH_ATOL_UNITS="1=1e-6,mV=1e-5" the
+// absolute tolerances by unit (SolverOptions::atol_by_unit). CPU s is the process's, all threads.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -46,6 +49,18 @@ int main(int argc, char** argv) {
   so.rtol = so.atol = argc > 5 ? std::atof(argv[5]) : 1e-6;  // default: the three-leg configs' tolerance
   if (const char* e = std::getenv("BENCH_MAXORD")) so.max_order = std::atoi(e);
   if (std::getenv("BENCH_STALD")) so.stability_limit_detection = true;
+  if (const char* e = std::getenv("BENCH_THREADS")) so.threads = std::atoi(e);
+  if (const char* e = std::getenv("BENCH_WINDOW_MS")) so.window_ms = std::atof(e);
+  if (const char* e = std::getenv("BENCH_WINDOW_ORDER")) so.window_order = std::atoi(e);
+  if (const char* e = std::getenv("BENCH_ATOL_UNITS")) {  // "1=1e-5,mV=1e-4"
+    for (std::string item, rest = e; !rest.empty();) {
+      const size_t comma = rest.find(',');
+      item = rest.substr(0, comma);
+      rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+      const size_t eq = item.find('=');
+      if (eq != std::string::npos) so.atol_by_unit.emplace_back(item.substr(0, eq), std::atof(item.c_str() + eq + 1));
+    }
+  }
   if (const char* e = std::getenv("BENCH_INTEGRATOR")) {
     const auto kind = solver::integrator_from_name(e);
     if (!kind) {

@@ -10,7 +10,8 @@
 # [model] motoneuron). Default: single_joint_fti:spiking single_joint_fti:rate
 # three_legs_tetrapod:rate. Environment: PHASMID (default build/phasmid), METHODS (default
 # "cvodes_bdf erk_dp5 erk_bs3"), TOLS (default "1e-4 1e-5 1e-6 1e-7 1e-8"), REPEATS (default 1,
-# the minimum is kept), PARTITIONED (unset: the model's default; true / false), REF_TOL (1e-10).
+# the minimum is kept), PARTITIONED (unset: the model's default; true / false), REF_TOL (1e-10),
+# SIM_EXTRA (more [simulation] lines for the methods' runs, not the reference: "threads = 2").
 # Time: CPU seconds (user + system) of `phasmid simulate` minus those of the same run for 1 ms
 # of model time (start-up, config, model assembly), so other load on the machine counts less.
 # Dimensionless features (fractions, ratios, lags) are reported ("max |d| 1"), not gated.
@@ -33,13 +34,14 @@ variant() {
   local cfg=$ROOT/configs/$1.toml mn=$2 method=$3 tol=$4 tend=${5:-}
   local sim="[simulation]\nrtol = $tol\natol = $tol\nintegrator = \"$method\""
   [ -n "${PARTITIONED:-}" ] && sim="$sim\npartitioned = $PARTITIONED"
+  [ -n "${SIM_EXTRA:-}" ] && sim="$sim\n$SIM_EXTRA"
   [ "$method" = reference ] && sim="[simulation]\nrtol = $REF_TOL\natol = $REF_TOL\nintegrator = \"cvodes_bdf\"\npartitioned = false"
   [ -n "$tend" ] && sim="$sim\nt_end_ms = $tend\ndiscard_ms = 0"
   local model="[model]"
   [ -n "$mn" ] && model="[model]\nmotoneuron = \"$mn\""
   grep -Ev "^(rtol|atol|integrator|partitioned|motoneuron) *=" "$cfg" |
     { [ -n "$tend" ] && grep -Ev "^(t_end_ms|discard_ms) *=" || cat; } |
-    sed -e "s/^\[simulation\]/$sim/" -e "s/^\[model\]/$model/"
+    sed -e "s|^\[simulation\]|$sim|" -e "s|^\[model\]|$model|"
 }
 
 # cpu_run TOML OUT_JSON: minimum CPU seconds over REPEATS runs; features to OUT_JSON.

@@ -77,7 +77,7 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
     throw Error(where(cfg, *st) + ": [simulation] does not apply to model type " + scenario->kind() +
                 " (its own parameters set the run; docs/config.md)");
   check_keys(cfg, *st, "simulation", {"t_end_ms", "output_dt_ms", "discard_ms", "rtol", "atol", "linear_solver", "max_step_ms",
-                                              "partitioned", "integrator"});
+                                              "partitioned", "integrator", "threads", "thread_window_ms", "atol_by_unit"});
   auto get = [&](const char* key, double& out, double lo) {
     if (const toml::node* n = st->get(key)) {
       out = number(cfg, *n, key);
@@ -104,6 +104,22 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
     const auto kind = solver::integrator_from_name(n->value<std::string>().value_or(""));
     if (!kind) throw Error(where(cfg, *n) + ": integrator must be one of " + solver::integrator_names());
     s.solver.integrator = *kind;
+  }
+  if (const toml::node* n = st->get("threads")) {
+    const auto v = n->value_exact<int64_t>();
+    if (!v || *v < 1 || *v > 64) throw Error(where(cfg, *n) + ": 'threads' must be an integer in 1..64");
+    s.solver.threads = static_cast<int>(*v);
+  }
+  get("thread_window_ms", s.solver.window_ms, 0);
+  if (const toml::node* n = st->get("atol_by_unit")) {
+    const toml::table* t = n->as_table();
+    if (!t) throw Error(where(cfg, *n) + ": 'atol_by_unit' must be a table of unit = tolerance, e.g. { mV = 1e-4 }");
+    s.solver.atol_by_unit.clear();
+    for (const auto& [unit, value] : *t) {
+      const double v = number(cfg, value, "atol_by_unit");
+      if (!(v > 0)) throw Error(where(cfg, value) + ": 'atol_by_unit' tolerances must be > 0");
+      s.solver.atol_by_unit.emplace_back(std::string(unit.str()), v);
+    }
   }
   if (const toml::node* n = st->get("partitioned")) {
     if (n->is_boolean()) {

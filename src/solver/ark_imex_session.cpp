@@ -136,6 +136,10 @@ void ArkImexSession::init_roots(const std::vector<int>& directions, CVRootFn g) 
   ARKStepSetNoInactiveRootWarn(mem());
 }
 
+void ArkImexSession::set_state_atol(const std::vector<double>&) {
+  throw Error("internal: per-state absolute tolerances are not implemented for the IMEX bench integrator");
+}
+
 void ArkImexSession::set_stop_time(double t) { check_arkode(ARKStepSetStopTime(mem(), t), "ARKStepSetStopTime"); }
 
 int ArkImexSession::advance(double tout, double* t, int itask) { return ARKStepEvolve(mem(), tout, y(), t, itask); }

@@ -43,6 +43,7 @@ class ArkImexSession : public IntegratorSession {
 
   void init_roots(const std::vector<int>& directions, CVRootFn g) override;
   void set_stop_time(double t) override;
+  void set_state_atol(const std::vector<double>& atol) override;
   int advance(double tout, double* t, int itask) override;
   void restart(double t) override;
   void root_info(int* found) override;

@@ -168,6 +168,12 @@ void CvodesSession::fetch_sensitivities() {
   check_cvodes(CVodeGetSens(mem(), &t, s()), "CVodeGetSens");
 }
 
+void CvodesSession::set_state_atol(const std::vector<double>& atol) {
+  OwnedVector v(N_VClone(y()));
+  for (size_t i = 0; i < atol.size(); ++i) NV_Ith_S(v.get(), i) = atol[i];
+  check_cvodes(CVodeSVtolerances(mem(), options_.rtol, v.get()), "CVodeSVtolerances");
+}
+
 void CvodesSession::restart(double t) {
   before_restarts_ = stats();
   check_cvodes(CVodeReInit(mem(), t, y()), "CVodeReInit");

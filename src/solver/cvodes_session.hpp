@@ -75,6 +75,7 @@ class CvodesSession : public IntegratorSession {
   // Root functions g (directions.size() of them) located in the given directions.
   void init_roots(const std::vector<int>& directions, CVRootFn g) override;
   void set_stop_time(double t) override;
+  void set_state_atol(const std::vector<double>& atol) override;
   // CVode towards tout in CV_NORMAL or CV_ONE_STEP mode; returns CVODES' flag (negative: failed).
   int advance(double tout, double* t, int itask) override;
   // The sensitivities at the time last returned, into s().

@@ -36,7 +36,7 @@ void ErkSession::FreeMemory::operator()(void* mem) const { ERKStepFree(&mem); }
 
 ErkSession::ErkSession(SUNContext ctx, const SolverOptions& options, const double* y0, size_t n, CVRhsFn rhs,
                        void* user_data)
-    : rhs_(rhs), user_data_(user_data) {
+    : rhs_(rhs), user_data_(user_data), rtol_(options.rtol) {
   y_.reset(new_state_vector(ctx, options, y0, n));
   mem_.reset(ERKStepCreate(rhs_trampoline, 0.0, y(), ctx));
   if (!mem_) throw SolverError("ERKStepCreate failed");
@@ -90,6 +90,12 @@ int ErkSession::root_trampoline(double t, N_Vector y, double* g, void* self) {
 
 // ERKStepReset keeps the counters and options (tolerances, roots, table), forgets the step
 // history and estimates a first step again, as CVodeReInit does.
+void ErkSession::set_state_atol(const std::vector<double>& atol) {
+  OwnedVector v(N_VClone(y()));
+  for (size_t i = 0; i < atol.size(); ++i) NV_Ith_S(v.get(), i) = atol[i];
+  check_arkode(ERKStepSVtolerances(mem(), rtol_, v.get()), "ERKStepSVtolerances");
+}
+
 void ErkSession::restart(double t) { check_arkode(ERKStepReset(mem(), t, y()), "ERKStepReset"); }
 
 void ErkSession::root_info(int* found) { check_arkode(ERKStepGetRootInfo(mem(), found), "ERKStepGetRootInfo"); }

@@ -32,6 +32,7 @@ class ErkSession : public IntegratorSession {
 
   void init_roots(const std::vector<int>& directions, CVRootFn g) override;
   void set_stop_time(double t) override;
+  void set_state_atol(const std::vector<double>& atol) override;
   int advance(double tout, double* t, int itask) override;
   void restart(double t) override;
   void root_info(int* found) override;
@@ -57,6 +58,7 @@ class ErkSession : public IntegratorSession {
   CVRhsFn rhs_;
   CVRootFn root_ = nullptr;
   void* user_data_;
+  double rtol_;
   OwnedVector y_;
   std::unique_ptr<void, FreeMemory> mem_;
   int degree_ = 3;

@@ -54,6 +54,8 @@ class IntegratorSession {
   // Root functions g (directions.size() of them) located in the given directions.
   virtual void init_roots(const std::vector<int>& directions, CVRootFn g) = 0;
   virtual void set_stop_time(double t) = 0;
+  // Absolute tolerances per state (instead of SolverOptions::atol for all); kept over restarts.
+  virtual void set_state_atol(const std::vector<double>& atol) = 0;
   // Towards tout in normal (1) or one-step (2) mode; the flag as in the contract.
   virtual int advance(double tout, double* t, int itask) = 0;
   virtual void restart(double t) = 0;

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <exception>
 #include <memory>
 #include <sstream>
 
@@ -17,6 +18,7 @@
 #include "solver/erk_session.hpp"
 #include "solver/output_sink.hpp"
 #include "solver/run_loop.hpp"
+#include "solver/window_pool.hpp"
 
 namespace phasmid::solver {
 using model::JetK;
@@ -27,6 +29,14 @@ namespace {
 constexpr int kMaxOrder = 12;  // Adams' maximum; BDF stops at 5
 
 struct Run;
+
+// One step of a part in windowed runs: its interpolating polynomial over [t0, tn] for all its
+// own states, as Taylor coefficients at tn: c[d * n_own + i] = (d^d y_i / dt^d)(tn) / d!.
+struct StepPoly {
+  double t0 = 0.0, tn = 0.0;
+  int order = 0;
+  std::vector<double> c;
+};
 
 // One part's integrator and the polynomial through which the other parts read its angles.
 struct PartSolver {
@@ -56,11 +66,22 @@ struct PartSolver {
   std::vector<size_t> root_state;     // their local state indices
   std::vector<size_t> pending_events; // events whose state this part has not yet passed
 
-  double export_value(size_t e, double at) const {
-    const double dt = at - t_poly;
-    const size_t ne = exports.size();
-    double v = coef[static_cast<size_t>(order) * ne + e];
-    for (int d = order - 1; d >= 0; --d) v = v * dt + coef[static_cast<size_t>(d) * ne + e];
+  // Windowed runs (SolverOptions::threads >= 2): the polynomial the others read during the
+  // window (this part's at the window's start), its steps since the earliest time still read,
+  // the roots found in the window (own states only) and a failure to rethrow after it.
+  double snap_t_poly = 0.0;
+  int snap_order = 0, snap_extrapolation_order = 0;
+  std::vector<double> snap_coef;
+  std::deque<StepPoly> history;
+  std::vector<std::vector<double>> spare;  // coefficient buffers of dropped steps, for reuse
+  std::vector<Event> found_in_window;
+  std::exception_ptr failure;
+
+  double export_value(size_t e, double at) const;
+
+  static double horner(const std::vector<double>& c, size_t stride, size_t e, int order, double dt) {
+    double v = c[static_cast<size_t>(order) * stride + e];
+    for (int d = order - 1; d >= 0; --d) v = v * dt + c[static_cast<size_t>(d) * stride + e];
     return v;
   }
 
@@ -79,6 +100,53 @@ struct PartSolver {
     order = q;
     t_poly = tn;
   }
+
+  // Windowed runs: the last step's polynomial for all own states into the history, and the
+  // exports' coefficients from it.
+  void record_step() {
+    const int q = session->interpolation_degree();
+    const double tn = session->current_time();
+    const size_t ns = states.size(), ne = exports.size();
+    StepPoly sp;
+    sp.t0 = tn - session->last_step();
+    sp.tn = tn;
+    sp.order = q;
+    if (!spare.empty()) {
+      sp.c = std::move(spare.back());
+      spare.pop_back();
+    }
+    sp.c.resize(static_cast<size_t>(q + 1) * ns);
+    double factorial = 1.0;
+    for (int d = 0; d <= q; ++d) {
+      if (d > 0) factorial *= d;
+      check_cvodes(session->dky(tn, d, session->work()), "the last step's interpolant (GetDky)");
+      const double* w = N_VGetArrayPointer(session->work());
+      for (size_t i = 0; i < ns; ++i) sp.c[static_cast<size_t>(d) * ns + i] = w[i] / factorial;
+      for (size_t e = 0; e < ne; ++e) coef[static_cast<size_t>(d) * ne + e] = sp.c[static_cast<size_t>(d) * ns + exports[e]];
+    }
+    order = q;
+    t_poly = tn;
+    history.push_back(std::move(sp));
+  }
+
+  // Windowed runs: own states at t from the latest recorded step that covers t.
+  bool state_from_history(double t, double* row) const {
+    const size_t ns = states.size();
+    for (auto it = history.rbegin(); it != history.rend(); ++it) {
+      if (t < it->t0 || t > it->tn) continue;
+      for (size_t i = 0; i < ns; ++i) row[states[i]] = horner(it->c, ns, i, it->order, t - it->tn);
+      return true;
+    }
+    return false;
+  }
+
+  // What the others read in the coming window: the present polynomial.
+  void take_snapshot(int extrapolation_order) {
+    snap_t_poly = t_poly;
+    snap_order = order;
+    snap_extrapolation_order = std::min(order, extrapolation_order);
+    snap_coef.assign(coef.begin(), coef.begin() + static_cast<long>(static_cast<size_t>(order + 1) * exports.size()));
+  }
 };
 
 struct Run {
@@ -86,7 +154,15 @@ struct Run {
   const std::vector<double>* p = nullptr;
   std::vector<JetK> pK;
   const std::vector<RootSpec>* roots = nullptr;
+  bool windowed = false;  // parts read each other's snapshots (SolverOptions::threads >= 2)
 };
+
+double PartSolver::export_value(size_t e, double at) const {
+  const size_t ne = exports.size();
+  if (!run->windowed) return horner(coef, ne, e, order, at - t_poly);
+  const double dt = at - snap_t_poly;
+  return horner(snap_coef, ne, e, dt > 0.0 ? snap_extrapolation_order : snap_order, dt);
+}
 
 // Own states from CVODES, inputs from their owners' polynomials at time t.
 template <class Scalar>
@@ -177,11 +253,35 @@ void build_parts(Run& run, const model::OdeModel& model, const model::ModelParti
   }
 }
 
+// The roots of the step a part has just taken (flag CV_ROOT_RETURN at tret), each as an event
+// with the part's own states, to `take`: a second call in CV_NORMAL mode to the time reached
+// returns the step's remaining roots one by one and then y(t) without stepping.
+template <class Take>
+void step_roots(PartSolver& ps, int flag, double tret, size_t n, std::vector<int>& found, Take take) {
+  while (flag == CV_ROOT_RETURN) {
+    found.assign(ps.roots.size(), 0);
+    ps.session->root_info(found.data());
+    for (size_t r = 0; r < ps.roots.size(); ++r) {
+      if (!found[r]) continue;
+      Event e;
+      e.t = tret;
+      e.root = ps.roots[r];
+      e.direction = found[r];
+      e.y.assign(n, NAN);
+      for (size_t i = 0; i < ps.states.size(); ++i) e.y[ps.states[i]] = NV_Ith_S(ps.session->y(), i);  // y(tret)
+      take(std::move(e));
+    }
+    flag = ps.session->advance(ps.t, &tret, CV_NORMAL);
+    if (flag < 0) check_cvodes(flag, "CVode (roots of the last step)");
+  }
+}
+
 // Each part's integrator from y0, integrating towards the first stop.
-void start_sessions(Run& run, SUNContext ctx, const SolverOptions& options, const std::vector<double>& y0,
-                    double first_stop) {
-  for (auto& psp : run.parts) {
-    PartSolver& ps = *psp;
+void start_sessions(Run& run, const model::OdeModel& model, const std::vector<std::unique_ptr<SundialsContext>>& contexts,
+                    const SolverOptions& options, const std::vector<double>& y0, double first_stop) {
+  for (size_t k = 0; k < run.parts.size(); ++k) {
+    PartSolver& ps = *run.parts[k];
+    SUNContext ctx = contexts[std::min(k, contexts.size() - 1)]->get();
     std::vector<double> own(ps.states.size());
     for (size_t i = 0; i < ps.states.size(); ++i) own[i] = y0[ps.states[i]];
     // Before its first step a part's polynomial is its initial value.
@@ -195,6 +295,7 @@ void start_sessions(Run& run, SUNContext ctx, const SolverOptions& options, cons
       cv->set_linear_solver(LinearSystem::Dense, 0, 0, options.jacobian == JacobianKind::AutoDiff ? part_jac : nullptr);
       ps.session = std::move(cv);
     }
+    if (!options.atol_by_unit.empty()) ps.session->set_state_atol(state_atol(model, options, ps.states));
     std::vector<int> dirs;
     for (size_t r : ps.roots) dirs.push_back((*run.roots)[r].direction);
     ps.session->init_roots(dirs, part_roots);
@@ -223,7 +324,11 @@ class Partitioned {
     ++res_.stats.restarts;
   }
   void record_outputs() {
-    if (stepped_) write_outputs(*stepped_, stepped_->t);
+    if (run_.windowed) {
+      for (auto& ps : run_.parts) write_outputs(*ps, ps->t);
+    } else if (stepped_) {
+      write_outputs(*stepped_, stepped_->t);
+    }
     if (options_.output_sink) flush_outputs(false);
   }
   // The caller's events in time order, each with the full right-hand side at its state; the
@@ -232,7 +337,13 @@ class Partitioned {
 
  private:
   PartSolver* lagging(const CommandSchedule& s) const;
+  [[noreturn]] void step_failed(const PartSolver& ps, double tret, int flag, bool too_much_work) const;
   void take_roots(PartSolver& ps, double tret);
+  void add_event(PartSolver& ps, Event e);
+  // Windowed runs (SolverOptions::threads >= 2): every part behind the window's end steps to
+  // it, concurrently, reading the others' snapshots; its roots are merged after the window.
+  double advance_window(CommandSchedule& s);
+  void step_until(PartSolver& ps, const CommandSchedule& s, double t1) const;
   void write_states(PartSolver& ps, double t, double* row) const;
   void write_outputs(PartSolver& ps, double up_to);
   // With an output sink: the row of output k and how many parts have written it.
@@ -263,6 +374,7 @@ class Partitioned {
   std::vector<char> discarded_;     // per entry of res.events
   std::vector<size_t> deferred_;    // res.events entries that are trigger crossings not yet fed
   PartSolver* stepped_ = nullptr;   // the part of the last advance
+  WindowPool pool_;                 // windowed runs' worker threads
   int flag_ = 0;
   std::vector<int> found_;
 };
@@ -271,7 +383,7 @@ Partitioned::Partitioned(Run& run, const model::OdeModel& model, const SolverOpt
                          const OutputTimes& output_times, size_t n_caller_roots,
                          const std::vector<double>& y0, SolveResult& res)
     : run_(run), model_(model), options_(options), output_times_(output_times), n_caller_roots_(n_caller_roots),
-      res_(res) {
+      res_(res), pool_(run.windowed ? options.threads : 1) {
   const size_t n = model.num_states(), n_out = output_times.size();
   res.n_states = n;
   if (options.output_sink) {
@@ -300,7 +412,15 @@ PartSolver* Partitioned::lagging(const CommandSchedule& s) const {
   return lag;
 }
 
+void Partitioned::step_failed(const PartSolver& ps, double tret, int flag, bool too_much_work) const {
+  std::ostringstream os;
+  os << ps.session->package() << " failed at t = " << tret << " ms in part " << ps.name << ": "
+     << (too_much_work ? "CV_TOO_MUCH_WORK" : ps.session->flag_name(flag)) << " " << failure_advice(options_, true);
+  throw SolverError(os.str());
+}
+
 double Partitioned::advance(CommandSchedule& s) {
+  if (run_.windowed) return advance_window(s);
   stepped_ = lagging(s);
   if (!stepped_) throw Error("internal: partitioned run advanced with every part at its stop");
   PartSolver& ps = *stepped_;
@@ -313,13 +433,7 @@ double Partitioned::advance(CommandSchedule& s) {
   flag_ = ps.session->advance(s.next_stop(), &tret, CV_ONE_STEP);
   // CV_ONE_STEP never reports CV_TOO_MUCH_WORK: the same limit per output interval here.
   const bool too_much_work = ++ps.steps_since_output > options_.max_steps;
-  if (flag_ < 0 || too_much_work) {
-    std::ostringstream os;
-    os << ps.session->package() << " failed at t = " << tret << " ms in part " << ps.name << ": "
-       << (too_much_work ? "CV_TOO_MUCH_WORK" : ps.session->flag_name(flag_))
-       << " " << failure_advice(options_, true);
-    throw SolverError(os.str());
-  }
+  if (flag_ < 0 || too_much_work) step_failed(ps, tret, flag_, too_much_work);
   if (flag_ == CV_TSTOP_RETURN) ps.t = s.next_stop();
   else ps.t = ps.session->current_time();
   ps.update_polynomial();
@@ -327,47 +441,100 @@ double Partitioned::advance(CommandSchedule& s) {
   return ps.t;
 }
 
-// Every root of this step is taken now, before another part steps on: a second call in
-// CV_NORMAL mode to the time reached returns the step's remaining roots one by one and then
-// y(t) without stepping. (Another part's next step could otherwise leave the time of a later
-// root of this step, where its state is interpolated.)
+// Every root of this step is taken now, before another part steps on (step_roots). (Another
+// part's next step could otherwise leave the time of a later root of this step, where its
+// state is interpolated.)
 void Partitioned::take_roots(PartSolver& ps, double tret) {
-  const size_t n = model_.num_states();
-  for (int f = flag_; f == CV_ROOT_RETURN;) {
-    found_.assign(ps.roots.size(), 0);
-    ps.session->root_info(found_.data());
-    for (size_t r = 0; r < ps.roots.size(); ++r) {
-      if (!found_[r]) continue;
-      Event e;
-      e.t = tret;
-      e.root = ps.roots[r];
-      e.direction = found_[r];
-      e.y.assign(n, NAN);
-      for (size_t i = 0; i < ps.states.size(); ++i) e.y[ps.states[i]] = NV_Ith_S(ps.session->y(), i);  // y(tret)
-      res_.events.push_back(std::move(e));
-      discarded_.push_back(0);
-      const size_t id = res_.events.size() - 1;
-      if (ps.roots[r] >= n_caller_roots_) deferred_.push_back(id);
-      // Parts past the event interpolate now (its time lies in their last step: each part's
-      // last step began at or before the lagging part's time); the others when they get there.
-      for (auto& other : run_.parts) {
-        if (other.get() == &ps) continue;
-        if (other->t >= tret) write_states(*other, tret, res_.events[id].y.data());
-        else other->pending_events.push_back(id);
-      }
+  step_roots(ps, flag_, tret, model_.num_states(), found_, [&](Event e) { add_event(ps, std::move(e)); });
+}
+
+// Event e of part ps (its own states filled in) into res.events, the trigger crossings to
+// feed, and the other parts' states at it: now for the parts past it (its time lies in their
+// last step, sequential runs: each part's last step began at or before the lagging part's time;
+// or in their history, windowed runs), the others when they get there.
+void Partitioned::add_event(PartSolver& ps, Event e) {
+  res_.events.push_back(std::move(e));
+  discarded_.push_back(0);
+  const size_t id = res_.events.size() - 1;
+  const double te = res_.events[id].t;
+  if (res_.events[id].root >= n_caller_roots_) deferred_.push_back(id);
+  for (auto& other : run_.parts) {
+    if (other.get() == &ps) continue;
+    if (other->t >= te) write_states(*other, te, res_.events[id].y.data());
+    else other->pending_events.push_back(id);
+  }
+}
+
+double Partitioned::advance_window(CommandSchedule& s) {
+  double t_keep = INFINITY;
+  for (auto& ps : run_.parts) t_keep = std::min(t_keep, ps->t);
+  const double t1 = std::min(t_keep + options_.window_ms, s.next_stop());
+  for (size_t id : deferred_) t_keep = std::min(t_keep, res_.events[id].t);
+  std::vector<PartSolver*> todo;
+  for (auto& ps : run_.parts) {
+    ps->take_snapshot(options_.window_order);
+    // Steps ending before t_keep are never read again (outputs, events and roll-backs come later).
+    while (ps->history.size() > 1 && ps->history.front().tn < t_keep) {
+      ps->spare.push_back(std::move(ps->history.front().c));
+      ps->history.pop_front();
     }
-    f = ps.session->advance(ps.t, &tret, CV_NORMAL);
-    if (f < 0) check_cvodes(f, "CVode (roots of the last step)");
+    if (ps->t < t1) todo.push_back(ps.get());
+  }
+  pool_.run(static_cast<int>(todo.size()), [&](int i) {
+    try {
+      step_until(*todo[i], s, t1);
+    } catch (...) {
+      todo[i]->failure = std::current_exception();
+    }
+  });
+  for (PartSolver* ps : todo)
+    if (ps->failure) std::rethrow_exception(ps->failure);
+  for (PartSolver* ps : todo) {
+    for (Event& e : ps->found_in_window) add_event(*ps, std::move(e));
+    ps->found_in_window.clear();
+  }
+  double reached = INFINITY;
+  for (auto& ps : run_.parts) reached = std::min(reached, ps->t);
+  return reached;
+}
+
+// One part to t1 (or its stop) on the calling thread; touches only ps and its session.
+void Partitioned::step_until(PartSolver& ps, const CommandSchedule& s, double t1) const {
+  const size_t n = model_.num_states();
+  std::vector<int> found(ps.roots.size());
+  while (ps.t < t1) {
+    if (ps.restart_pending) {
+      ps.session->restart(ps.t);
+      ps.session->set_stop_time(s.next_stop());
+      ps.restart_pending = false;
+    }
+    double tret = ps.t;
+    int flag = ps.session->advance(s.next_stop(), &tret, CV_ONE_STEP);
+    const bool too_much_work = ++ps.steps_since_output > options_.max_steps;
+    if (flag < 0 || too_much_work) step_failed(ps, tret, flag, too_much_work);
+    ps.t = flag == CV_TSTOP_RETURN ? s.next_stop() : ps.session->current_time();
+    ps.record_step();
+    step_roots(ps, flag, tret, n, found, [&](Event e) { ps.found_in_window.push_back(std::move(e)); });
   }
 }
 
 void Partitioned::handle_events(CommandSchedule& s) {
-  write_pending_events(*stepped_);
+  if (run_.windowed) {
+    for (auto& ps : run_.parts) write_pending_events(*ps);
+  } else {
+    write_pending_events(*stepped_);
+  }
   if (!deferred_.empty()) feed_triggers(s);
 }
 
 // Writes part `ps`'s states at time t (within its last step) into the full-size state `row`.
 void Partitioned::write_states(PartSolver& ps, double t, double* row) const {
+  if (run_.windowed) {
+    if (!ps.state_from_history(t, row))
+      throw SolverError("internal: part " + ps.name + " has no step covering t = " + std::to_string(t) +
+                        " ms; set [simulation] threads = 1");
+    return;
+  }
   N_Vector tmp = ps.session->work();
   if (ps.session->dky(t, 0, tmp) < 0) {  // the scheduling guarantees t is in the last step
     const double tn = ps.session->current_time(), hu = ps.session->last_step();
@@ -476,6 +643,7 @@ void Partitioned::roll_back(PartSolver& x, double tau) {
   x.session->restart(tau);
   x.restart_pending = false;
   x.t = tau;
+  while (!x.history.empty() && x.history.back().t0 >= tau) x.history.pop_back();
   while (x.next_out > first_out_ && output_times_[x.next_out - 1] > tau) --parts_done(--x.next_out);
 }
 
@@ -503,6 +671,16 @@ void Partitioned::finish(const std::vector<double>& p) {
 
 }  // namespace
 
+// The absolute tolerance of each of `states` (SolverOptions::atol_by_unit).
+std::vector<double> state_atol(const model::OdeModel& model, const SolverOptions& options,
+                               const std::vector<size_t>& states) {
+  std::vector<double> atol(states.size(), options.atol);
+  for (size_t i = 0; i < states.size(); ++i)
+    for (const auto& [unit, value] : options.atol_by_unit)
+      if (model.states()[states[i]].unit == unit) atol[i] = value;
+  return atol;
+}
+
 SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPartition& P, const SolverOptions& options,
                             const std::vector<double>& p_given, const OutputTimes& output_times,
                             const std::vector<RootSpec>& caller_roots) {
@@ -511,13 +689,18 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
   const std::vector<RootSpec> roots = schedule.roots(caller_roots);
   const std::vector<double> y0 = model.initial_state(schedule.p());
 
-  SundialsContext ctx;  // declared before the parts: destroyed after them
+  // Declared before the parts: destroyed after them. Windowed runs: one per part, so that no
+  // two threads share one.
+  const bool windowed = options.threads >= 2;
+  std::vector<std::unique_ptr<SundialsContext>> contexts(windowed ? P.size() : 1);
+  for (auto& c : contexts) c = std::make_unique<SundialsContext>();
   Run run;
+  run.windowed = windowed;
   run.p = &schedule.p();
   run.roots = &roots;
   for (double v : schedule.p()) run.pK.emplace_back(v);
   build_parts(run, model, P, roots);
-  start_sessions(run, ctx.get(), options, y0, schedule.next_stop());
+  start_sessions(run, model, contexts, options, y0, schedule.next_stop());
 
   SolveResult res;
   Partitioned driver(run, model, options, output_times, caller_roots.size(), y0, res);

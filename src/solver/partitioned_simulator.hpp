@@ -18,6 +18,12 @@
 // [[triggers]]: their crossings fire in time order once every part has passed them; a command
 // time found so becomes a synchronisation point, and parts already beyond it go back to it.
 //
+// On several threads (SolverOptions::threads >= 2) the parts step concurrently in windows of
+// SolverOptions::window_ms: each reads the others only from copies of their polynomials taken
+// at the window's start, and records its steps' polynomials, by which its states at the
+// others' events, at outputs and at roll-backs are found after the window. The numbers depend
+// on the window, not on the thread count or timing; threads = 1 is the scheduler above.
+//
 // Not for forward sensitivities (Simulator::run then integrates the whole model as one
 // system); SolverOptions::partitioning chooses; docs/benchmarks.md compares the two.
 #include <vector>
@@ -26,6 +32,11 @@
 #include "solver/simulator.hpp"
 
 namespace phasmid::solver {
+
+// The absolute tolerance of each of `states` (global indices): SolverOptions::atol_by_unit
+// by the state's unit, SolverOptions::atol for the others.
+std::vector<double> state_atol(const model::OdeModel& model, const SolverOptions& options,
+                               const std::vector<size_t>& states);
 
 SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPartition& partition,
                             const SolverOptions& options, const std::vector<double>& p,

@@ -530,6 +530,12 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const OutputTimes
     session_owner = std::move(cv);
   }
   IntegratorSession& session = *session_owner;
+  if (!options_.atol_by_unit.empty()) {
+    if (ns > 0) throw Error("[simulation] atol_by_unit applies to runs without sensitivities");
+    std::vector<size_t> all(d.n);
+    for (size_t i = 0; i < d.n; ++i) all[i] = i;
+    session.set_state_atol(state_atol(model_, options_, all));
+  }
   std::vector<int> dirs;
   for (const auto& r : all_roots) dirs.push_back(r.direction);
   session.init_roots(dirs, root_cb);

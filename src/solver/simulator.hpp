@@ -68,6 +68,17 @@ struct SolverOptions {
   // says it pays at equal accuracy (OdeModel::partition_by_default: the rate-MN walking models;
   // docs/benchmarks.md "Partitioned integration").
   Partitioning partitioning = Partitioning::Auto;
+  // Partitioned runs only. 1: the sequential scheduler (the part furthest behind steps next).
+  // >= 2: the parts step concurrently on that many threads in windows of window_ms, each
+  // reading the others' angles from their polynomials at the window's start, extrapolated at
+  // most window_order beyond their last step; the result depends on window_ms and
+  // window_order, never on the thread count or timing (solver/partitioned_simulator.hpp).
+  int threads = 1;
+  // Absolute tolerance by the unit of a state (StateInfo::unit: "mV", "1", "rad", ...) in place
+  // of atol; states of other units keep atol. Runs without sensitivities only.
+  std::vector<std::pair<std::string, double>> atol_by_unit;
+  double window_ms = 0.25;
+  int window_order = 3;
   bool progress = false;             // progress line on a terminal (stderr)
   // Set: output samples go to the sink as they are reached instead of into SolveResult
   // (plain runs without sensitivities; see SolveResult::t).

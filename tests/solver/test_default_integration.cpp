@@ -3,7 +3,9 @@
 // reference, CVODES BDF at rtol = atol = 1e-10 as one system: every feature in ms within
 // 0.01 ms, every one in deg within 0.01 deg. The single FTi joint as shipped
 // (configs/single_joint_fti.toml, Dormand-Prince 5(4) at 1e-6, 9 s) and the three legs with
-// rate motoneurons at their kind's default (BDF per joint at 1e-7; 5 s, 2.5 s discarded).
+// rate motoneurons at their kind's default (BDF per joint at 1e-7; 5 s, 2.5 s discarded); both
+// three-leg models on two threads ([simulation] threads = 2: the windowed partitioned run,
+// spiking at its default Dormand-Prince per joint at 1e-6).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -58,4 +60,15 @@ TEST(DefaultIntegration, RateThreeLegsMatchTheTightReference) {
       "[simulation]\nt_end_ms = 5000\ndiscard_ms = 2500\n",
       "three_legs_rate.toml");
   expect_default_matches_reference(cfg, "three legs (rate)");
+}
+
+TEST(DefaultIntegration, ThreeLegsOnTwoThreadsMatchTheTightReference) {
+  for (const char* mn : {"rate", "spiking"}) {
+    auto cfg = config::parse_config(std::string("[model]\ntype = \"three_legs\"\ngait = \"tetrapod\"\nmotoneuron = \"") +
+                                        mn + "\"\n[simulation]\nt_end_ms = 5000\ndiscard_ms = 2500\nthreads = 2\n",
+                                    "three_legs_threads.toml");
+    auto scenario = config::build_scenario(cfg);
+    ASSERT_EQ(config::simulation_settings(cfg, scenario.get()).solver.threads, 2);
+    expect_default_matches_reference(cfg, (std::string("three legs (") + mn + ", 2 threads)").c_str());
+  }
 }

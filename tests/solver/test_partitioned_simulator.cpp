@@ -71,10 +71,11 @@ struct EventTimes {
   std::vector<double> t;
   std::vector<size_t> root;
 };
-EventTimes events(const model::OdeModel& m, double t_end, double rtol, bool partitioned) {
+EventTimes events(const model::OdeModel& m, double t_end, double rtol, bool partitioned, int threads = 1) {
   solver::SolverOptions o;
   o.rtol = o.atol = rtol;
   o.partitioning = partitioned ? solver::Partitioning::On : solver::Partitioning::Off;
+  o.threads = threads;
   const auto r = solver::Simulator(m, o).run(m.parameters().values(), solver::output_grid(t_end, 5.0),
                                              features::feature_roots(m));
   EventTimes e;
@@ -106,16 +107,18 @@ double max_time_error(const EventTimes& a, const EventTimes& ref) {
 
 // At 1e-8 every event within 0.02 ms of the whole system's at 1e-10 (0.2 ms is 1/2500 of a
 // step period); at the configs' 1e-6 (compare_1e6) no worse than 4x the whole system's error
-// at 1e-6 (measured: 0.4x on the rate leg, 1.9x on the rate three legs).
-void expect_converges_like_whole(const model::OdeModel& m, double t_end, bool compare_1e6) {
+// at 1e-6 (measured: 0.4x on the rate leg, 1.9x on the rate three legs). threads >= 2: the
+// windowed partitioned run (SolverOptions::threads).
+void expect_converges_like_whole(const model::OdeModel& m, double t_end, bool compare_1e6, int threads = 1) {
   const EventTimes ref = events(m, t_end, 1e-10, false);
   EXPECT_GT(ref.t.size(), 50u);
-  const double parts8 = max_time_error(events(m, t_end, 1e-8, true), ref);
-  std::printf("%s: %zu events; max |dt| vs whole 1e-10: parts 1e-8 %.3g ms", m.kind().c_str(), ref.t.size(), parts8);
+  const double parts8 = max_time_error(events(m, t_end, 1e-8, true, threads), ref);
+  std::printf("%s, %d thread(s): %zu events; max |dt| vs whole 1e-10: parts 1e-8 %.3g ms", m.kind().c_str(), threads,
+              ref.t.size(), parts8);
   EXPECT_LT(parts8, 0.02);
   if (compare_1e6) {
     const double whole6 = max_time_error(events(m, t_end, 1e-6, false), ref);
-    const double parts6 = max_time_error(events(m, t_end, 1e-6, true), ref);
+    const double parts6 = max_time_error(events(m, t_end, 1e-6, true, threads), ref);
     std::printf(", parts 1e-6 %.3g ms, whole 1e-6 %.3g ms", parts6, whole6);
     EXPECT_LT(parts6, 4 * whole6);
   }
@@ -163,6 +166,20 @@ TEST(PartitionedSimulator, EventTimesConvergeLikeTheWholeSystem) {
 
 // Central commands are synchronisation points: all parts restart there together. The middle
 // leg switched to backward walking at 1500 ms (a breakpoint) converges as well.
+// The windowed run (two threads, snapshots of the other parts' angles over 0.25 ms windows)
+// meets the same bounds: the leg and three legs with rate motoneurons, the spiking leg at 1e-8.
+TEST(PartitionedSimulator, WindowedRunConvergesLikeTheWholeSystem) {
+  model::LegOptions l;
+  l.thc_set = "A.17";
+  l.motoneuron = model::MotoneuronModel::Rate;
+  expect_converges_like_whole(*model::build_leg_model("middle", l), 3000.0, true, 2);
+  model::ThreeLegOptions t;
+  t.motoneuron = model::MotoneuronModel::Rate;
+  expect_converges_like_whole(*model::build_three_leg_model(t), 3000.0, true, 2);
+  l.motoneuron = model::MotoneuronModel::Spiking;
+  expect_converges_like_whole(*model::build_leg_model("middle", l), 3000.0, false, 2);
+}
+
 TEST(PartitionedSimulator, ConvergesAcrossCentralCommands) {
   model::LegOptions l;
   l.thc_set = "A.17";

@@ -1,0 +1,65 @@
+// Absolute tolerances by a state's unit ([simulation] atol_by_unit, SolverOptions::atol_by_unit):
+// the integrators take them (a looser one for the membrane potentials takes fewer steps, the
+// same value as atol reproduces the scalar run bit for bit), in the whole-system and the
+// partitioned run; runs with sensitivities and bad values are refused.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "common/error.hpp"
+#include "config/config.hpp"
+#include "model/leg_network.hpp"
+#include "model/network_builder.hpp"
+#include "solver/simulator.hpp"
+
+using namespace phasmid;
+
+namespace {
+
+solver::SolveResult run_leg(solver::Partitioning partitioning, const std::vector<std::pair<std::string, double>>& by_unit) {
+  model::LegOptions l;
+  l.thc_set = "A.17";
+  l.motoneuron = model::MotoneuronModel::Rate;
+  auto m = model::build_leg_model("middle", l);
+  solver::SolverOptions o;
+  o.rtol = o.atol = 1e-7;
+  o.partitioning = partitioning;
+  o.atol_by_unit = by_unit;
+  return solver::Simulator(*m, o).run(m->parameters().values(), solver::output_grid(1500.0, 5.0));
+}
+
+}  // namespace
+
+TEST(StateAtol, LooserPotentialsTakeFewerStepsAndAtolItselfChangesNothing) {
+  for (auto partitioning : {solver::Partitioning::Off, solver::Partitioning::On}) {
+    const solver::SolveResult scalar = run_leg(partitioning, {});
+    const solver::SolveResult same = run_leg(partitioning, {{"mV", 1e-7}});
+    const solver::SolveResult loose = run_leg(partitioning, {{"mV", 1e-5}});
+    EXPECT_EQ(same.stats.steps, scalar.stats.steps);
+    EXPECT_EQ(same.y, scalar.y);
+    EXPECT_LT(loose.stats.steps, scalar.stats.steps * 0.95) << "partitioned " << (partitioning == solver::Partitioning::On);
+  }
+}
+
+TEST(StateAtol, RefusedWithSensitivities) {
+  model::LegOptions l;
+  l.motoneuron = model::MotoneuronModel::Rate;
+  auto m = model::build_leg_model("middle", l);
+  solver::SolverOptions o;
+  o.atol_by_unit = {{"mV", 1e-5}};
+  EXPECT_THROW(solver::Simulator(*m, o).run(m->parameters().values(), solver::output_grid(10.0, 5.0), {}, {0}), Error);
+}
+
+TEST(StateAtol, ConfigKey) {
+  const std::string head = "[model]\ntype = \"leg\"\nleg = \"middle\"\n[simulation]\n";
+  auto cfg = config::parse_config(head + "atol_by_unit = { mV = 1e-5, \"1\" = 1e-6 }\n", "a.toml");
+  const auto s = config::simulation_settings(cfg).solver;
+  ASSERT_EQ(s.atol_by_unit.size(), 2u);
+  double mv = 0, one = 0;
+  for (const auto& [u, v] : s.atol_by_unit) (u == "mV" ? mv : one) = v;
+  EXPECT_EQ(mv, 1e-5);
+  EXPECT_EQ(one, 1e-6);
+  EXPECT_THROW(config::simulation_settings(config::parse_config(head + "atol_by_unit = { mV = 0 }\n", "b.toml")), Error);
+  EXPECT_THROW(config::simulation_settings(config::parse_config(head + "atol_by_unit = 1e-5\n", "c.toml")), Error);
+  EXPECT_THROW(config::simulation_settings(config::parse_config(head + "threads = 0\n", "d.toml")), Error);
+}
