@@ -22,6 +22,7 @@ struct Context {
   size_t n = 0;
   const ContinuationOptions& o;
   Vec w;  // arclength weights (W)
+  ShootingOptions shooting;  // o.shooting with scale = W^-1 (the minimum-norm steps' measure)
   long shots = 0, plain_shots = 0;
   bool integration_failed = false;
   // A solution crossing the section slower than this (in its direction) is refused: Newton
@@ -32,6 +33,7 @@ struct Context {
 struct Solved {
   Vec z;
   Shot shot;
+  std::vector<std::complex<double>> multipliers;  // of shot.monodromy, by decreasing modulus
   int iterations = 0;
 };
 
@@ -41,8 +43,7 @@ Eigen::MatrixXd jacobian(const Context& c, const Shot& s, const Vec& row) {
 
 // The corrector (continuation/shooting.hpp) from z with row . (z - z_pred) = 0.
 std::optional<Solved> correct(Context& c, const Vec& z, const Vec& z_pred, const Vec& row) {
-  ShootingOptions so = c.o.shooting;
-  so.scale = c.w.cwiseInverse();  // minimum-norm steps measure as the arclength does
+  const ShootingOptions& so = c.shooting;
   NewtonReport rep;
   Correction r;
   try {
@@ -57,7 +58,8 @@ std::optional<Solved> correct(Context& c, const Vec& z, const Vec& z_pred, const
   const double dir = so.section.direction == 0 ? 1.0 : so.section.direction;
   const double rate = so.section.direction == 0 ? std::abs(r.shot.f_end[sec]) : dir * r.shot.f_end[sec];
   if (!(rate > c.min_rate)) return std::nullopt;
-  return Solved{r.z, std::move(r.shot), rep.iterations};
+  std::vector<std::complex<double>> mu = multipliers(r.shot.monodromy);
+  return Solved{r.z, std::move(r.shot), std::move(mu), rep.iterations};
 }
 
 // Unit tangent of the branch in weighted coordinates, oriented along `dir` (weighted).
@@ -66,9 +68,9 @@ Vec tangent(const Context& c, const Solved& s, const Vec& dir) {
   Vec e = Vec::Zero(c.n + 2);
   e[c.n + 1] = 1.0;
   // Minimum-norm where neutral directions are declared: the tangent then has no component in them.
-  const ShootingOptions& so = c.o.shooting;
-  const size_t neutral = neutral_count(s.shot.monodromy, so.neutral_tolerance);
-  Vec t = -c.w.cwiseProduct(newton_step(jacobian(c, s.shot, row), e, neutral, c.w.cwiseInverse(), so.section.state));
+  const ShootingOptions& so = c.shooting;
+  const size_t neutral = multiplier_roles(s.multipliers, so.neutral_tolerance).neutral.size();
+  Vec t = -c.w.cwiseProduct(newton_step(jacobian(c, s.shot, row), e, neutral, so.scale, so.section.state));
   t.normalize();
   return t.dot(dir) < 0 ? Vec(-t) : t;
 }
@@ -119,11 +121,10 @@ BranchPoint describe(const Context& c, const Solved& s, const Vec& t, const std:
   b.newton_iterations = s.iterations;
   b.residual = s.shot.max_residual();
   b.tangent_parameter = t[n + 1] / c.w[n + 1];
-  b.multipliers = multipliers(s.shot.monodromy);
-  for (size_t i = 1; i < b.multipliers.size(); ++i)
-    if (std::abs(b.multipliers[i] - 1.0) < std::abs(b.multipliers[b.trivial] - 1.0)) b.trivial = i;
-  for (size_t i = 0; i < b.multipliers.size(); ++i)
-    if (i != b.trivial && std::abs(b.multipliers[i] - 1.0) < c.o.shooting.neutral_tolerance) b.neutral.push_back(i);
+  b.multipliers = s.multipliers;
+  MultiplierRoles roles = multiplier_roles(b.multipliers, c.shooting.neutral_tolerance);
+  b.trivial = roles.trivial;
+  b.neutral = std::move(roles.neutral);
   b.stable = true;
   for (size_t i = 0; i < b.multipliers.size(); ++i)
     if (b.counted(i) && std::abs(b.multipliers[i]) >= 1.0) b.stable = false;
@@ -364,7 +365,7 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
   const auto t_start = std::chrono::steady_clock::now();
   const ContinuationOptions o = checked(model, opt);
   const size_t n = model.num_states();
-  Context c{model, p, path_of(model, o), 0.0, n, o, Vec::Ones(n + 2)};
+  Context c{model, p, path_of(model, o), 0.0, n, o, Vec::Ones(n + 2), o.shooting};
   c.path.apply(c.p, o.start);
   NewtonReport rep;
   const Cycle first = find_cycle(model, c.p, o.shooting, rep);
@@ -375,6 +376,7 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
   z0[n + 1] = o.start;
   const CycleRun run0 = run_cycle(c, z0);
   c.w = weights(c, z0, run0);
+  c.shooting.scale = c.w.cwiseInverse();  // minimum-norm steps measure as the arclength does
   Branch br = new_branch(model, o, run0);
   char note[160];
   std::snprintf(note, sizeof note, "cycle at the start after the transient: residual %.3g after %d Newton iterations",

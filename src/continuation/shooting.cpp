@@ -90,11 +90,13 @@ Eigen::VectorXd newton_step(const Eigen::MatrixXd& J, const Eigen::VectorXd& F, 
   return -c.cwiseProduct(svd.matrixV().leftCols(k) * coeff);
 }
 
-size_t neutral_count(const Eigen::MatrixXd& monodromy, double neutral_tolerance) {
-  if (!(neutral_tolerance > 0)) return 0;
-  size_t near = 0;
-  for (const auto& m : multipliers(monodromy)) near += std::abs(m - 1.0) < neutral_tolerance;
-  return near > 0 ? near - 1 : 0;
+MultiplierRoles multiplier_roles(const std::vector<std::complex<double>>& mu, double neutral_tolerance) {
+  MultiplierRoles r;
+  for (size_t i = 1; i < mu.size(); ++i)
+    if (std::abs(mu[i] - 1.0) < std::abs(mu[r.trivial] - 1.0)) r.trivial = i;
+  for (size_t i = 0; i < mu.size(); ++i)
+    if (i != r.trivial && std::abs(mu[i] - 1.0) < neutral_tolerance) r.neutral.push_back(i);
+  return r;
 }
 
 std::vector<double> on_section(std::vector<double> y0, const solver::RootSpec& section) {
@@ -161,8 +163,10 @@ Correction correct_cycle(const model::OdeModel& model, const std::vector<double>
   double gr = 1.0;
   size_t neutral = 0;  // neutral directions of the last monodromy, left out of the steps
   auto relinearise = [&] {
-    s = eq.linearise(z), fresh = true, J = newton_matrix(s, sec, row), gr = growth(s.monodromy);
-    neutral = neutral_count(s.monodromy, o.neutral_tolerance);
+    s = eq.linearise(z), fresh = true, J = newton_matrix(s, sec, row);
+    const auto mu = multipliers(s.monodromy);
+    gr = growth(mu);
+    neutral = multiplier_roles(mu, o.neutral_tolerance).neutral.size();
   };
   relinearise();
   Eigen::VectorXd F = eq.F(z);
@@ -244,8 +248,7 @@ Cycle find_cycle(const model::OdeModel& model, const std::vector<double>& p, con
   return c;
 }
 
-double growth(const Eigen::MatrixXd& monodromy) {
-  const auto mu = multipliers(monodromy);
+double growth(const std::vector<std::complex<double>>& mu) {
   return std::max(1.0, mu.empty() ? 0.0 : std::abs(mu.front()));
 }
 

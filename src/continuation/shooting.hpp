@@ -13,6 +13,7 @@
 // the state they have there; the cycle must not depend on t0 beyond that (no command inside
 // a cycle). A model with triggers starts every cycle at t0 = 0 with no triggered command
 // fired: its discrete mode at the section must be its mode at t = 0.
+#include <complex>
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -47,7 +48,7 @@ struct ShootingOptions {
   solver::RootSpec section{0, 0.0, +1};  // the cycle starts where y[state] crosses level in direction
   double transient_ms = 5000.0;   // integrated before the first section crossing is taken
   double max_period_ms = 2000.0;  // search window for the first period after the transient
-  double tolerance = 1e-7;        // converged when max_i |y_i(T) - y0_i| < tolerance * growth(Phi) (state units)
+  double tolerance = 1e-7;        // converged when max_i |y_i(T) - y0_i| < tolerance * growth (state units)
   int max_iterations = 12;
   solver::SolverOptions solver;   // the runs with sensitivities (monodromy)
   // Relative tolerance of the plain runs that evaluate the residual y(T) - y0 (atol scaled
@@ -126,8 +127,14 @@ Correction correct_cycle(const model::OdeModel& model, const std::vector<double>
 Eigen::VectorXd newton_step(const Eigen::MatrixXd& J, const Eigen::VectorXd& F, size_t neutral,
                             const Eigen::VectorXd& scale = {}, size_t section_state = 0);
 
-// How many multipliers besides the one nearest 1 lie within neutral_tolerance of 1.
-size_t neutral_count(const Eigen::MatrixXd& monodromy, double neutral_tolerance);
+// Which multipliers (by decreasing modulus, as multipliers() gives them) play which part: the
+// one nearest 1 is the trivial one (the cycle's phase direction); the further ones within
+// neutral_tolerance of 1 are neutral (none where it is 0).
+struct MultiplierRoles {
+  size_t trivial = 0;
+  std::vector<size_t> neutral;
+};
+MultiplierRoles multiplier_roles(const std::vector<std::complex<double>>& mu, double neutral_tolerance);
 
 // Newton's matrix [Phi - I, f(y(T)), dy/dlambda; e_section; row] (a zero lambda column
 // without a parameter).
@@ -151,9 +158,9 @@ Cycle newton_fixed_parameter(const model::OdeModel& model, const std::vector<dou
 Cycle find_cycle(const model::OdeModel& model, const std::vector<double>& p, const ShootingOptions& options,
                  NewtonReport& report, Shot* shot = nullptr);
 
-// max(1, largest |multiplier|): how much an integration error at the start of a cycle can grow
-// by its end, the factor on ShootingOptions::tolerance.
-double growth(const Eigen::MatrixXd& monodromy);
+// max(1, largest |multiplier|) of multipliers by decreasing modulus: how much an integration
+// error at the start of a cycle can grow by its end, the factor on ShootingOptions::tolerance.
+double growth(const std::vector<std::complex<double>>& mu);
 
 // Floquet multipliers (eigenvalues of the monodromy) by decreasing modulus.
 std::vector<std::complex<double>> multipliers(const Eigen::MatrixXd& monodromy);

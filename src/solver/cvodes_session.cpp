@@ -169,8 +169,7 @@ void CvodesSession::fetch_sensitivities() {
 }
 
 void CvodesSession::set_state_atol(const std::vector<double>& atol) {
-  OwnedVector v(N_VClone(y()));
-  for (size_t i = 0; i < atol.size(); ++i) NV_Ith_S(v.get(), i) = atol[i];
+  const OwnedVector v = vector_like(y(), atol);
   check_cvodes(CVodeSVtolerances(mem(), options_.rtol, v.get()), "CVodeSVtolerances");
 }
 

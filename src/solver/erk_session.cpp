@@ -88,14 +88,13 @@ int ErkSession::root_trampoline(double t, N_Vector y, double* g, void* self) {
   return s->root_(t, y, g, s->user_data_);
 }
 
-// ERKStepReset keeps the counters and options (tolerances, roots, table), forgets the step
-// history and estimates a first step again, as CVodeReInit does.
 void ErkSession::set_state_atol(const std::vector<double>& atol) {
-  OwnedVector v(N_VClone(y()));
-  for (size_t i = 0; i < atol.size(); ++i) NV_Ith_S(v.get(), i) = atol[i];
+  const OwnedVector v = vector_like(y(), atol);
   check_arkode(ERKStepSVtolerances(mem(), rtol_, v.get()), "ERKStepSVtolerances");
 }
 
+// ERKStepReset keeps the counters and options (tolerances, roots, table), forgets the step
+// history and estimates a first step again, as CVodeReInit does.
 void ErkSession::restart(double t) { check_arkode(ERKStepReset(mem(), t, y()), "ERKStepReset"); }
 
 void ErkSession::root_info(int* found) { check_arkode(ERKStepGetRootInfo(mem(), found), "ERKStepGetRootInfo"); }

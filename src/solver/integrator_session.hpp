@@ -86,6 +86,12 @@ class IntegratorSession {
     void operator()(N_Vector v) const { N_VDestroy(v); }
   };
   using OwnedVector = std::unique_ptr<std::remove_pointer_t<N_Vector>, DestroyVector>;
+  // A clone of `like` holding `values` (e.g. per-state tolerances for the package).
+  static OwnedVector vector_like(N_Vector like, const std::vector<double>& values) {
+    OwnedVector v(N_VClone(like));
+    for (size_t i = 0; i < values.size(); ++i) NV_Ith_S(v.get(), i) = values[i];
+    return v;
+  }
 
  private:
   OwnedVector work_;

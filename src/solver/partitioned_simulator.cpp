@@ -337,6 +337,9 @@ class Partitioned {
 
  private:
   PartSolver* lagging(const CommandSchedule& s) const;
+  // One step of ps towards the next stop (restarting it first if a command asked for it); its
+  // flag, with tret the time it returned and ps.t the time reached. Touches only ps.
+  int step_once(PartSolver& ps, const CommandSchedule& s, double& tret) const;
   [[noreturn]] void step_failed(const PartSolver& ps, double tret, int flag, bool too_much_work) const;
   void take_roots(PartSolver& ps, double tret);
   void add_event(PartSolver& ps, Event e);
@@ -412,6 +415,20 @@ PartSolver* Partitioned::lagging(const CommandSchedule& s) const {
   return lag;
 }
 
+int Partitioned::step_once(PartSolver& ps, const CommandSchedule& s, double& tret) const {
+  if (ps.restart_pending) {
+    ps.session->restart(ps.t);
+    ps.session->set_stop_time(s.next_stop());
+    ps.restart_pending = false;
+  }
+  const int flag = ps.session->advance(s.next_stop(), &tret, CV_ONE_STEP);
+  // CV_ONE_STEP never reports CV_TOO_MUCH_WORK: the same limit per output interval here.
+  const bool too_much_work = ++ps.steps_since_output > options_.max_steps;
+  if (flag < 0 || too_much_work) step_failed(ps, tret, flag, too_much_work);
+  ps.t = flag == CV_TSTOP_RETURN ? s.next_stop() : ps.session->current_time();
+  return flag;
+}
+
 void Partitioned::step_failed(const PartSolver& ps, double tret, int flag, bool too_much_work) const {
   std::ostringstream os;
   os << ps.session->package() << " failed at t = " << tret << " ms in part " << ps.name << ": "
@@ -424,18 +441,8 @@ double Partitioned::advance(CommandSchedule& s) {
   stepped_ = lagging(s);
   if (!stepped_) throw Error("internal: partitioned run advanced with every part at its stop");
   PartSolver& ps = *stepped_;
-  if (ps.restart_pending) {
-    ps.session->restart(ps.t);
-    ps.session->set_stop_time(s.next_stop());
-    ps.restart_pending = false;
-  }
   double tret = ps.t;
-  flag_ = ps.session->advance(s.next_stop(), &tret, CV_ONE_STEP);
-  // CV_ONE_STEP never reports CV_TOO_MUCH_WORK: the same limit per output interval here.
-  const bool too_much_work = ++ps.steps_since_output > options_.max_steps;
-  if (flag_ < 0 || too_much_work) step_failed(ps, tret, flag_, too_much_work);
-  if (flag_ == CV_TSTOP_RETURN) ps.t = s.next_stop();
-  else ps.t = ps.session->current_time();
+  flag_ = step_once(ps, s, tret);
   ps.update_polynomial();
   take_roots(ps, tret);
   return ps.t;
@@ -503,16 +510,8 @@ void Partitioned::step_until(PartSolver& ps, const CommandSchedule& s, double t1
   const size_t n = model_.num_states();
   std::vector<int> found(ps.roots.size());
   while (ps.t < t1) {
-    if (ps.restart_pending) {
-      ps.session->restart(ps.t);
-      ps.session->set_stop_time(s.next_stop());
-      ps.restart_pending = false;
-    }
     double tret = ps.t;
-    int flag = ps.session->advance(s.next_stop(), &tret, CV_ONE_STEP);
-    const bool too_much_work = ++ps.steps_since_output > options_.max_steps;
-    if (flag < 0 || too_much_work) step_failed(ps, tret, flag, too_much_work);
-    ps.t = flag == CV_TSTOP_RETURN ? s.next_stop() : ps.session->current_time();
+    const int flag = step_once(ps, s, tret);
     ps.record_step();
     step_roots(ps, flag, tret, n, found, [&](Event e) { ps.found_in_window.push_back(std::move(e)); });
   }

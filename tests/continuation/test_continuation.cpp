@@ -197,7 +197,7 @@ TEST(Continuation, CoupledStuartLandauPairMultipliersInClosedForm) {
   ASSERT_EQ(mu.size(), 4u);
   const double expected[] = {1.0, std::exp(-2 * k * T), std::exp(-2 * lambda * T), std::exp(-2 * (lambda + k) * T)};
   for (size_t i = 0; i < 4; ++i) EXPECT_NEAR(mu[i].real(), expected[i], 1e-6) << "multiplier " << i;
-  EXPECT_EQ(neutral_count(shot.monodromy, 1e-4), 0u);
+  EXPECT_EQ(multiplier_roles(mu, 1e-4).neutral.size(), 0u);
 }
 
 // The minimum-norm step leaves a direction of near-zero singular value alone: J = Q diag(2, 1,
