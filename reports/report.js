@@ -776,7 +776,9 @@
     var idm = 'fig-continuation-multipliers';
     var neutral = Math.max.apply(null, (c.neutral || [0]).concat([0]));
     var fm = figure(sec, idm, 'Moduli of the ' + shown + ' largest Floquet multipliers along the branch (the trivial multiplier 1 left out); a cycle is stable while all lie below 1' +
-      (neutral > 0 ? ', apart from up to ' + neutral + ' neutral multiplier(s) within the neutral tolerance of 1 (a family of cycles: directions nothing pulls back), which are not counted.' : '.'), 340);
+      (neutral > 0 ? ', apart from up to ' + neutral + ' neutral multiplier(s) within the neutral tolerance of 1 (a family of cycles: directions nothing pulls back), which are not counted.' : '.') +
+      (c.held_fractions ? ' Held phases (the member of the family followed): ' + c.held_names.split(',').map(function (n, j) {
+        return n + ' at ' + fmt(c.held_fractions[j]) + ' of the period'; }).join(', ') + '.' : ''), 340);
     draw(idm, fm, { type: 'line', data: { datasets: sets },
       options: { plugins: { title: titleOpt('Floquet multipliers |μ| against ' + c.parameter) },
         scales: { x: axis(xl, { type: 'linear' }), y: axis('|μ| (1)') } } });

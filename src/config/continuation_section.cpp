@@ -14,15 +14,15 @@ namespace {
 // section = "<leg>.liftoff" (beta rising through the leg's ground-contact threshold),
 // "<leg>.touchdown" (falling through it) or "angle_max" (the first angle's maxima).
 solver::RootSpec named_section(const Config& cfg, const toml::node& node, const model::OdeModel& m,
-                               const std::vector<double>& p) {
-  const std::string s = text(cfg, node, "section");
+                               const std::vector<double>& p, const char* key = "section") {
+  const std::string s = text(cfg, node, key);
   if (s == "angle_max") return sensitivity::default_section(m);
   const auto dot = s.rfind('.');
   const std::string leg = dot == std::string::npos ? "" : s.substr(0, dot), ev = dot == std::string::npos ? s : s.substr(dot + 1);
   const model::ContactLeg* c = m.contact_leg(leg);
   if (c && (ev == "liftoff" || ev == "touchdown"))
     return {c->beta_state, p[c->threshold_param] * M_PI / 180.0, ev == "liftoff" ? +1 : -1};
-  throw Error(where(cfg, node) + ": [continuation] section '" + s +
+  throw Error(where(cfg, node) + ": [continuation] " + key + " '" + s +
               "' is not an event of this model (\"<leg>.liftoff\", \"<leg>.touchdown\" for a leg with ground contact, "
               "\"angle_max\", or give section_state, section_level, section_direction)");
 }
@@ -57,6 +57,21 @@ void read_features(const Config& cfg, const toml::node& node, const model::OdeMo
   }
 }
 
+// held_phases = ["<leg>.liftoff", ...]: events (named as the section is) whose fraction of the
+// period, measured on the first cycle, is held along the branch.
+void read_held_phases(const Config& cfg, const toml::node& node, const model::OdeModel& m, const std::vector<double>& p,
+                      continuation::ContinuationOptions& o) {
+  const toml::array* a = node.as_array();
+  if (!a) throw Error(where(cfg, node) + ": [continuation] held_phases must be a list of events (\"<leg>.liftoff\", ...)");
+  for (const toml::node& e : *a) {
+    continuation::HeldPhase h;
+    h.name = text(cfg, e, "held_phases");
+    if (h.name == "angle_max") throw Error(where(cfg, e) + ": [continuation] held_phases: give a leg's liftoff or touchdown");
+    h.event = named_section(cfg, e, m, p, "held_phases");
+    o.shooting.held_phases.push_back(h);
+  }
+}
+
 // [continuation.linked]: "<parameter>" = [value at start, value at end], one per parameter
 // moved with the continuation parameter.
 void read_linked(const Config& cfg, const toml::node& node, const model::OdeModel& m, continuation::ContinuationOptions& o) {
@@ -83,7 +98,7 @@ continuation::ContinuationOptions continuation_options(const Config& cfg, const 
   check_keys(cfg, *t, "continuation",
              {"parameter", "range", "initial_step", "min_step", "max_step", "max_points", "section", "section_state",
               "section_level", "section_direction", "transient_ms", "max_period_ms", "tolerance", "max_iterations",
-              "residual_rtol", "neutral_tolerance", "features", "feature_cycles", "max_period_factor", "hopf_amplitude_fraction", "locate_iterations", "linked"});
+              "residual_rtol", "neutral_tolerance", "held_phases", "features", "feature_cycles", "max_period_factor", "hopf_amplitude_fraction", "locate_iterations", "linked"});
   continuation::ContinuationOptions o;
   o.shooting.solver = sim.solver;
   o.shooting.solver.progress = false;
@@ -137,6 +152,7 @@ continuation::ContinuationOptions continuation_options(const Config& cfg, const 
   count("locate_iterations", o.locate_iterations);
   if (auto* n = t->get("features")) read_features(cfg, *n, m, o);
   if (auto* n = t->get("linked")) read_linked(cfg, *n, m, o);
+  if (auto* n = t->get("held_phases")) read_held_phases(cfg, *n, m, p, o);
   if (!(o.shooting.tolerance > 0) || !(o.shooting.residual_rtol >= 0) ||
       !(o.shooting.neutral_tolerance >= 0 && o.shooting.neutral_tolerance < 1) || !(o.shooting.transient_ms >= 0) || !(o.shooting.max_period_ms > 0) ||
       !(o.feature_cycles >= 2))

@@ -42,12 +42,13 @@ Eigen::MatrixXd jacobian(const Context& c, const Shot& s, const Vec& row) {
 }
 
 // The corrector (continuation/shooting.hpp) from z with row . (z - z_pred) = 0.
-std::optional<Solved> correct(Context& c, const Vec& z, const Vec& z_pred, const Vec& row) {
+// `start`: a linearisation near z (the previous point's) that Newton's matrix starts from.
+std::optional<Solved> correct(Context& c, const Vec& z, const Vec& z_pred, const Vec& row, const Shot* start = nullptr) {
   const ShootingOptions& so = c.shooting;
   NewtonReport rep;
   Correction r;
   try {
-    r = correct_cycle(c.model, c.p, c.path, c.t0, z, z_pred, row, so, rep);
+    r = correct_cycle(c.model, c.p, c.path, c.t0, z, z_pred, row, so, rep, start);
   } catch (const Error&) {  // integration failure, tangential switch
     c.integration_failed = true;
   }
@@ -65,20 +66,24 @@ std::optional<Solved> correct(Context& c, const Vec& z, const Vec& z_pred, const
 // Unit tangent of the branch in weighted coordinates, oriented along `dir` (weighted).
 Vec tangent(const Context& c, const Solved& s, const Vec& dir) {
   const Vec row = dir.cwiseProduct(c.w);
-  Vec e = Vec::Zero(c.n + 2);
-  e[c.n + 1] = 1.0;
-  // Minimum-norm where neutral directions are declared: the tangent then has no component in them.
+  const Eigen::MatrixXd J = jacobian(c, s.shot, row);
+  Vec e = Vec::Zero(J.rows());
+  e[J.rows() - 1] = 1.0;
+  // Minimum-norm where neutral directions are declared and not held: the tangent then has no
+  // component in them. With held phases it keeps their fractions.
   const ShootingOptions& so = c.shooting;
-  const size_t neutral = multiplier_roles(s.multipliers, so.neutral_tolerance).neutral.size();
-  Vec t = -c.w.cwiseProduct(newton_step(jacobian(c, s.shot, row), e, neutral, so.scale, so.section.state));
+  const size_t neutral =
+      so.held_phases.empty() ? multiplier_roles(s.multipliers, so.neutral_tolerance).neutral.size() : 0;
+  Vec t = -c.w.cwiseProduct(newton_step(J, e, neutral, so.scale, row_scale(so)));
   t.normalize();
   return t.dot(dir) < 0 ? Vec(-t) : t;
 }
 
 // The solved cycle at z_pred's arclength along weighted direction dir from `from`.
-std::optional<Solved> step(Context& c, const Vec& from, const Vec& dir, double ds) {
+// `start` as for correct().
+std::optional<Solved> step(Context& c, const Vec& from, const Vec& dir, double ds, const Shot* start = nullptr) {
   const Vec z_pred = from + ds * dir.cwiseQuotient(c.w);
-  return correct(c, z_pred, z_pred, dir.cwiseProduct(c.w));
+  return correct(c, z_pred, z_pred, dir.cwiseProduct(c.w), start);
 }
 
 // Features and per-state ranges (max - min over one period) from feature_cycles periods of
@@ -359,6 +364,16 @@ std::optional<SpecialPoint> natural_end(const ContinuationOptions& o, const std:
   return std::nullopt;
 }
 
+// The held phases' fractions not given are those of the first cycle.
+void hold_phases_of(Context& c, const Cycle& first) {
+  std::vector<HeldPhase>& held = c.shooting.held_phases;
+  if (held.empty()) return;
+  const std::vector<double> f =
+      measure_fractions(c.model, c.p, c.path, {first.y0, first.period_ms, c.o.start, first.t0}, c.shooting);
+  for (size_t j = 0; j < held.size(); ++j)
+    if (std::isnan(held[j].fraction)) held[j].fraction = f[j];
+}
+
 }  // namespace
 
 Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, const ContinuationOptions& opt) {
@@ -370,6 +385,7 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
   NewtonReport rep;
   const Cycle first = find_cycle(model, c.p, o.shooting, rep);
   c.t0 = first.t0;
+  hold_phases_of(c, first);
   Vec z0(n + 2);
   for (size_t i = 0; i < n; ++i) z0[i] = first.y0[i];
   z0[n] = first.period_ms;
@@ -382,6 +398,7 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
   std::snprintf(note, sizeof note, "cycle at the start after the transient: residual %.3g after %d Newton iterations",
                 rep.residual, rep.iterations);
   br.start_note = note;
+  br.held_phases = c.shooting.held_phases;
   Vec dir = Vec::Zero(n + 2);
   dir[n + 1] = o.end > o.start ? 1.0 : -1.0;
   auto cur = correct(c, z0, z0, dir.cwiseProduct(c.w));
@@ -398,7 +415,7 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
       break;
     }
     c.integration_failed = false;
-    auto next = step(c, cur->z, dir, ds);
+    auto next = step(c, cur->z, dir, ds, &cur->shot);
     if (!next) {
       ds /= 2;
       if (ds >= o.min_step) continue;

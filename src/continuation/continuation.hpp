@@ -79,6 +79,7 @@ struct Branch {
   std::vector<BranchPoint> points;
   std::vector<SpecialPoint> special;  // in branch order; the last one says how the branch ended
   solver::RootSpec section{0, 0.0, 0};
+  std::vector<HeldPhase> held_phases;  // with the fractions held along the branch
   std::string start_note;  // how the first cycle converged (residual, Newton iterations)
   long shots = 0;         // integrations with sensitivities (monodromy; all tries)
   long plain_shots = 0;   // integrations without (the quasi-Newton residuals)

@@ -52,6 +52,16 @@ void write_special(io::H5Writer& out, const std::string& g, const Branch& b) {
   out.write(sp + "/period_ms", period, "ms");
 }
 
+// The held phases' fractions of the period, their events' names (comma-separated) as an attribute.
+void write_held_phases(io::H5Writer& out, const std::string& g, const Branch& b) {
+  if (b.held_phases.empty()) return;
+  std::vector<double> fractions;
+  std::string names;
+  for (const auto& h : b.held_phases) fractions.push_back(h.fraction), names += (names.empty() ? "" : ",") + h.name;
+  out.write(g + "/held_phase_fractions", fractions, "1 (fraction of the period after the section)");
+  out.set_attribute(g + "/held_phase_fractions", "names", names);
+}
+
 }  // namespace
 
 void write_branch_h5(io::H5Writer& out, const model::OdeModel& model, const Branch& b) {
@@ -78,6 +88,7 @@ void write_branch_h5(io::H5Writer& out, const model::OdeModel& model, const Bran
   out.write(g + "/stable", stable, "1 = stable");
   out.write(g + "/newton_iterations", iterations, "1");
   write_multipliers(out, g, b, ns);
+  write_held_phases(out, g, b);
   std::vector<std::string> names;
   std::vector<double> y0;
   for (const auto& s : model.states()) names.push_back(s.name);
@@ -100,6 +111,7 @@ std::string format_summary(const Branch& b) {
   s << "; " << b.shots << " integrations with the monodromy and " << b.plain_shots << " without in " << b.seconds
     << " s\n";
   if (!b.start_note.empty()) s << "  " << b.start_note << "\n";
+  for (const auto& h : b.held_phases) s << "  held phase: " << h.name << " at " << h.fraction << " of the period\n";
   for (const auto& sp : b.special)
     s << "  " << sp.kind << " at " << b.parameter << " = " << sp.parameter << " " << b.parameter_unit << ", period "
       << sp.period_ms << " ms (point " << sp.index << (sp.note.empty() ? "" : "; " + sp.note) << ")\n";

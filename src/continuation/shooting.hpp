@@ -13,6 +13,7 @@
 // the state they have there; the cycle must not depend on t0 beyond that (no command inside
 // a cycle). A model with triggers starts every cycle at t0 = 0 with no triggered command
 // fired: its discrete mode at the section must be its mode at t = 0.
+#include <cmath>
 #include <complex>
 #include <cstddef>
 #include <functional>
@@ -44,6 +45,17 @@ struct ParameterPath {
   }
 };
 
+// A held phase: the cycle's state y[event.state] passes event.level at t = fraction * T after
+// the section. For a cycle of a family (legs whose relative phases nothing pulls back), one
+// held phase per neutral direction turns the family's member into an isolated solution: the
+// held phases replace the minimum-norm steps, and the member is the one with the same timing
+// of these events within the cycle (e.g. each leg's lift-off as a fraction of the step).
+struct HeldPhase {
+  std::string name;        // as configured (e.g. "front.liftoff"), for output
+  solver::RootSpec event;  // its direction picks the crossing whose fraction is measured
+  double fraction = NAN;   // in (0, 1); NaN: measured on the first cycle (measure_fractions)
+};
+
 struct ShootingOptions {
   solver::RootSpec section{0, 0.0, +1};  // the cycle starts where y[state] crosses level in direction
   double transient_ms = 5000.0;   // integrated before the first section crossing is taken
@@ -64,6 +76,11 @@ struct ShootingOptions {
   // to the nearest member of the family, measured in `scale`), and the branch leaves them out
   // of the stability and special-point tests. 0: every direction is solved (rank-revealing QR).
   double neutral_tolerance = 0.0;
+  // Held phases (see HeldPhase): with them the Newton system has n + 2 + held rows (cycle,
+  // section, held phases, the last row) for the n + 2 unknowns and is solved in the least-squares
+  // sense, consistent at a member of the family; no direction is dropped. neutral_tolerance
+  // still says which multipliers are left out of the stability tests.
+  std::vector<HeldPhase> held_phases;
   // Typical size of each unknown of z = (y0, T, lambda) for the minimum-norm steps (the
   // continuation sets its arclength scaling W^-1); empty: 1 for each.
   Eigen::VectorXd scale;
@@ -85,13 +102,17 @@ struct Shot {
   Eigen::MatrixXd monodromy;  // dy(T)/dy0
   Eigen::VectorXd f_end;      // f(y(T)) = dy(T)/dT
   Eigen::VectorXd dy_dparam;  // dy(T)/dlambda (size 0 without a parameter)
+  // Per held phase j: y[s_j](fraction_j T) - level_j and its derivative by z = (y0, T, lambda)
+  // (held x (n + 2); the lambda column zero without a parameter).
+  Eigen::VectorXd held_residual;
+  Eigen::MatrixXd held_rows;
   double max_residual() const { return residual.size() ? residual.cwiseAbs().maxCoeff() : 0.0; }
 };
 
 // One integration of the cycle's run over [0, T] with sensitivities to y0 and to the path's
 // parameters at lambda = cycle.parameter (none: an empty path). Throws Error on integration failure.
 Shot shoot(const model::OdeModel& model, std::vector<double> p, const ParameterPath& path, const Cycle& cycle,
-           const solver::SolverOptions& solver);
+           const solver::SolverOptions& solver, const std::vector<HeldPhase>& held = {});
 
 struct NewtonReport {
   int iterations = 0;
@@ -100,13 +121,15 @@ struct NewtonReport {
   long shots = 0, plain_shots = 0;  // integrations with sensitivities / without
 };
 
-// y(T) - y0 by one plain integration (no sensitivities) at ShootingOptions::residual_rtol.
+// y(T) - y0, followed by the held phases' residuals (Shot::held_residual), by one plain
+// integration (no sensitivities) at ShootingOptions::residual_rtol.
 Eigen::VectorXd shooting_residual(const model::OdeModel& model, std::vector<double> p, const ParameterPath& path,
                                   const Cycle& cycle, const ShootingOptions& options);
 
-// The corrector on z = (y0, T, lambda): y(T; y0, lambda) - y0 = 0, y0[s] = level and
-// row . (z - z_pred) = 0 (row = e_lambda: lambda fixed). Quasi-Newton: the monodromy is
-// computed at the start (one run with sensitivities), the iteration continues with Broyden's
+// The corrector on z = (y0, T, lambda): y(T; y0, lambda) - y0 = 0, y0[s] = level, the held
+// phases and row . (z - z_pred) = 0 (row = e_lambda: lambda fixed). Quasi-Newton: the monodromy is
+// computed at the start (one run with sensitivities; with `start`, a linearisation at a nearby
+// z such as the previous point of a branch, Newton's matrix starts from it instead), the iteration continues with Broyden's
 // rank-one updates of Newton's matrix and plain runs for the residual; a step that raises the
 // residual is halved (up to four times), and the monodromy is recomputed where the residual
 // falls by less than half or halving fails. At the converged z one more run with sensitivities
@@ -118,14 +141,25 @@ struct Correction {
 };
 Correction correct_cycle(const model::OdeModel& model, const std::vector<double>& p, const ParameterPath& path,
                          double t0, Eigen::VectorXd z, const Eigen::VectorXd& z_pred, const Eigen::VectorXd& row,
-                         const ShootingOptions& options, NewtonReport& report);
+                         const ShootingOptions& options, NewtonReport& report, const Shot* start = nullptr);
 
-// The Newton step dz solving J dz = -F: rank-revealing QR where neutral = 0; else the
-// minimum-norm step in the variables z / scale (rows scaled alike: the residual's rows by their
-// state's scale, the section row by its state's, the last row as it is) with the `neutral`
-// smallest singular values dropped (ShootingOptions::neutral_tolerance).
+// The Newton step dz solving J dz = -F (least squares where J has more rows than columns):
+// rank-revealing QR where neutral = 0 and J is square; else in the variables z / col_scale with
+// the rows multiplied by row_scale (empty: ones), by QR where neutral = 0 and otherwise as the
+// minimum-norm step with the `neutral` smallest singular values dropped
+// (ShootingOptions::neutral_tolerance).
 Eigen::VectorXd newton_step(const Eigen::MatrixXd& J, const Eigen::VectorXd& F, size_t neutral,
-                            const Eigen::VectorXd& scale = {}, size_t section_state = 0);
+                            const Eigen::VectorXd& col_scale = {}, const Eigen::VectorXd& row_scale = {});
+
+// 1 / typical size of each row of Newton's matrix, from ShootingOptions::scale: a cycle row by
+// its state's scale, the section row and each held phase's row by their state's, the last row
+// as it is. Empty where the options have no scale.
+Eigen::VectorXd row_scale(const ShootingOptions& options);
+
+// The fraction of the period at which each held phase's event first occurs in its direction on
+// the cycle (run over one period). Throws Error naming the held phase if it has no crossing.
+std::vector<double> measure_fractions(const model::OdeModel& model, std::vector<double> p,
+                                      const ParameterPath& path, const Cycle& cycle, const ShootingOptions& options);
 
 // Which multipliers (by decreasing modulus, as multipliers() gives them) play which part: the
 // one nearest 1 is the trivial one (the cycle's phase direction); the further ones within
@@ -136,8 +170,8 @@ struct MultiplierRoles {
 };
 MultiplierRoles multiplier_roles(const std::vector<std::complex<double>>& mu, double neutral_tolerance);
 
-// Newton's matrix [Phi - I, f(y(T)), dy/dlambda; e_section; row] (a zero lambda column
-// without a parameter).
+// Newton's matrix [Phi - I, f(y(T)), dy/dlambda; e_section; held rows; row] (a zero lambda
+// column without a parameter).
 Eigen::MatrixXd newton_matrix(const Shot& shot, size_t section_state, const Eigen::VectorXd& row);
 
 // The state with its section component set exactly to the section's level, and roots on the
@@ -153,7 +187,8 @@ Cycle newton_fixed_parameter(const model::OdeModel& model, const std::vector<dou
                              const ShootingOptions& options, NewtonReport& report, Shot* shot = nullptr);
 
 // Integrates past the transient, takes the last full period between two section crossings as
-// the guess (sensitivity::find_periodic_orbit) and refines it by Newton. Throws Error if the
+// the guess (sensitivity::find_periodic_orbit) and refines it by Newton, without the held
+// phases (the cycle it finds gives their fractions: measure_fractions). Throws Error if the
 // run has no two crossings after the transient or Newton does not converge.
 Cycle find_cycle(const model::OdeModel& model, const std::vector<double>& p, const ShootingOptions& options,
                  NewtonReport& report, Shot* shot = nullptr);

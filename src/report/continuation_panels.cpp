@@ -74,6 +74,10 @@ void extract_continuation(const io::H5Reader& r, json& out) {
   c["multipliers_imag"] = rows(r, g + "/multipliers_imag", n);
   c["trivial"] = numbers(r.read_doubles(g + "/trivial_multiplier"));
   if (r.exists(g + "/neutral_multipliers")) c["neutral"] = numbers(r.read_doubles(g + "/neutral_multipliers"));
+  if (r.exists(g + "/held_phase_fractions")) {
+    c["held_fractions"] = numbers(r.read_doubles(g + "/held_phase_fractions"));
+    c["held_names"] = r.read_string_attribute(g + "/held_phase_fractions", "names");
+  }
   c["special"] = special_points(r, g + "/special_points");
   out["continuation"] = c;
 }

@@ -89,4 +89,7 @@ grep -q "bad.toml:7: \[continuation\] unknown parameter 'sl.lambdaa' (did you me
 sed 's/section_direction = "rising"/section_direction = "up"/' "$tmp/sl.toml" >"$tmp/bad2.toml"
 err=$("$PHASMID" continue "$tmp/bad2.toml" -o "$tmp/bad.h5" -q 2>&1) && { echo "FAIL: bad direction accepted"; fail=1; }
 grep -q "bad2.toml:14: \[continuation\] section_direction must be" <<<"$err" || { echo "FAIL error text: $err"; fail=1; }
+printf 'held_phases = ["front.liftoff"]\n' >>"$tmp/sl.toml"
+err=$("$PHASMID" continue "$tmp/sl.toml" -o "$tmp/bad.h5" -q 2>&1) && { echo "FAIL: held phase of a leg the model lacks accepted"; fail=1; }
+grep -q "sl.toml:17: \[continuation\] held_phases 'front.liftoff' is not an event of this model" <<<"$err" || { echo "FAIL error text: $err"; fail=1; }
 exit $fail

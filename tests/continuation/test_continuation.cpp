@@ -178,6 +178,65 @@ TEST(Continuation, NeutralDirectionOfAFamilyOfCyclesIsKeptAndNotCounted) {
   EXPECT_NEAR(b.points.back().parameter, 0.01, 1e-12);
 }
 
+// With the second oscillator's phase held instead (y2 rising through 0, one held phase for the
+// one neutral direction), the family's member is fixed by a condition: the measured fraction is
+// the closed form (2 pi - 1) / (2 pi) (theta2 = theta1 + 1 rad, y2 = 0 rising at theta2 = 2 pi),
+// the relative phase stays 1 rad to Newton's precision (1e-8, against 1e-4 for the
+// minimum-norm steps above), and the second 1 is still neutral, not a loss of stability.
+TEST(Continuation, HeldPhasePinsTheMemberOfAFamilyOfCycles) {
+  auto m = make("stuart_landau", "pair = true\n");
+  ContinuationOptions o = sl_options(0.05, 0.01);
+  o.shooting.neutral_tolerance = 1e-4;
+  o.shooting.held_phases = {{"y2 rising", {3, 0.0, +1}}};
+  const Branch b = continue_cycles(*m, m->parameters().values(), o);
+  ASSERT_GE(b.points.size(), 4u);
+  ASSERT_EQ(b.special.size(), 1u);
+  EXPECT_EQ(b.special.back().kind, "range_end");
+  ASSERT_EQ(b.held_phases.size(), 1u);
+  EXPECT_NEAR(b.held_phases[0].fraction, (2 * M_PI - 1) / (2 * M_PI), 1e-7);
+  const double T = 100.0;
+  for (const auto& q : b.points) {
+    ASSERT_EQ(q.neutral.size(), 1u) << "lambda " << q.parameter;
+    for (size_t i = 0; i < 4; ++i)
+      if (q.counted(i)) EXPECT_NEAR(q.multipliers[i].real(), std::exp(-2.0 * q.parameter * T), 1e-6);
+    EXPECT_TRUE(q.stable) << "lambda " << q.parameter;
+    EXPECT_NEAR(q.period_ms, T, 1e-6);
+    EXPECT_NEAR(std::hypot(q.y0[2], q.y0[3]), std::sqrt(q.parameter), 1e-7);
+    EXPECT_NEAR(std::atan2(q.y0[3], q.y0[2]), 1.0, 1e-8) << "lambda " << q.parameter;
+  }
+  EXPECT_NEAR(b.points.back().parameter, 0.01, 1e-12);
+}
+
+// The held phase's row of Newton's matrix (d y_s(fraction T) / d(y0, T, lambda) from the
+// sensitivities at the held time) against central differences of the plain runs' held
+// residual, on the coupled pair (k = 0.01 /ms) continued in lambda together with sl.omega.
+TEST(Continuation, HeldPhaseRowMatchesFiniteDifferences) {
+  auto m = make("stuart_landau", "pair = true\n");
+  std::vector<double> p = m->parameters().values();
+  p[m->parameters().index("sl.k")] = 0.01;
+  ParameterPath path;
+  path.index = {m->parameters().index("sl.lambda"), m->parameters().index("sl.omega")};
+  path.base = {0.05, p[path.index[1]]};
+  path.slope = {1.0, 0.3};
+  path.start = 0.05;
+  ShootingOptions o = tight({1, 0.0, +1}, 0, 150);
+  o.held_phases = {{"x2 falling", {2, 0.1, -1}, 0.3}};
+  const Cycle c{{0.2, 0.0, 0.05, 0.21}, 97.0, 0.06, 0.0};
+  const Shot s = shoot(*m, p, path, c, o.solver, o.held_phases);
+  ASSERT_EQ(s.held_rows.rows(), 1);
+  EXPECT_NEAR(s.held_residual[0], shooting_residual(*m, p, path, c, o)[4], 1e-9);
+  auto held = [&](Cycle x) { return shooting_residual(*m, p, path, x, o)[4]; };
+  const double h = 1e-5;
+  for (size_t j = 0; j < 6; ++j) {
+    Cycle a = c, b = c;
+    if (j < 4) a.y0[j] += h, b.y0[j] -= h;
+    else if (j == 4) a.period_ms += h, b.period_ms -= h;
+    else a.parameter += h, b.parameter -= h;
+    const double fd = (held(a) - held(b)) / (2 * h);
+    EXPECT_NEAR(s.held_rows(0, j), fd, 1e-6 * std::max(1.0, std::abs(fd))) << "column " << j;
+  }
+}
+
 // The coupled pair (k = 0.01 /ms) settles in phase; its antisymmetric perturbations decay k
 // faster on both sides: multipliers 1, exp(-2 k T), exp(-2 lambda T), exp(-2 (lambda + k) T).
 TEST(Continuation, CoupledStuartLandauPairMultipliersInClosedForm) {
