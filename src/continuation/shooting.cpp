@@ -270,6 +270,7 @@ Correction correct_cycle(const model::OdeModel& model, const std::vector<double>
     drop = o.held_phases.empty() ? multiplier_roles(mu, o.neutral_tolerance).neutral.size() : 0;
   };
   auto relinearise = [&] { adopt(eq.linearise(z), true); };
+  int slow = 0;  // consecutive fresh-monodromy steps that did not halve the residual
   if (start) adopt(Shot(*start), false);
   else relinearise();
   Eigen::VectorXd F = eq.F(z);
@@ -277,7 +278,11 @@ Correction correct_cycle(const model::OdeModel& model, const std::vector<double>
     const double res = max_abs(F, n);
     report.iterations = it;
     report.residual = res;
-    if (o.on_iteration) o.on_iteration(it, res, fresh);
+    if (o.on_iteration) {
+      Eigen::Index worst = 0;
+      F.cwiseAbs().head(static_cast<Eigen::Index>(n + 1 + o.held_phases.size())).maxCoeff(&worst);
+      o.on_iteration(it, res, static_cast<size_t>(worst), fresh);
+    }
     // Integration errors reach y(T) amplified by the largest multiplier (unstable cycles).
     if (res < o.tolerance * gr) {  // the section's and the row's equations are linear: solved exactly
       if (!fresh) s = eq.linearise(z);
@@ -314,6 +319,11 @@ Correction correct_cycle(const model::OdeModel& model, const std::vector<double>
     }
     const Eigen::VectorXd step = zn - z;
     if (step.squaredNorm() > 0) J += ((Fn - F) - J * step) * step.transpose() / step.squaredNorm();  // Broyden's update
+    // Two steps in a row along Newton's own direction (a fresh monodromy) that did not halve
+    // the residual: the guess is outside the region where the linearisation holds, and a
+    // shorter continuation step is cheaper than more monodromies.
+    slow = fresh && max_abs(Fn, n) > 0.5 * res ? slow + 1 : 0;
+    if (slow >= 2) break;
     z = zn, F = Fn, fresh = false;
     if (max_abs(Fn, n) > 0.5 * res) relinearise();
   }

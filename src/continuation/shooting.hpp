@@ -84,9 +84,10 @@ struct ShootingOptions {
   // Typical size of each unknown of z = (y0, T, lambda) for the minimum-norm steps (the
   // continuation sets its arclength scaling W^-1); empty: 1 for each.
   Eigen::VectorXd scale;
-  // Called at each corrector iteration with its index, the residual max |y(T) - y0| and
+  // Called at each corrector iteration with its index, the residual max |y(T) - y0| (and of
+  // the held phases), the row where it is largest (a state index; n + 1 + j: held phase j) and
   // whether the monodromy was computed at that point (the verb's --trace); may be empty.
-  std::function<void(int, double, bool)> on_iteration;
+  std::function<void(int, double, size_t, bool)> on_iteration;
 };
 
 struct Cycle {
@@ -132,7 +133,8 @@ Eigen::VectorXd shooting_residual(const model::OdeModel& model, std::vector<doub
 // z such as the previous point of a branch, Newton's matrix starts from it instead), the iteration continues with Broyden's
 // rank-one updates of Newton's matrix and plain runs for the residual; a step that raises the
 // residual is halved (up to four times), and the monodromy is recomputed where the residual
-// falls by less than half or halving fails. At the converged z one more run with sensitivities
+// falls by less than half or halving fails; two such steps in a row with a fresh monodromy end
+// the iteration unconverged (the guess lies outside the linearisation's reach). At the converged z one more run with sensitivities
 // gives `shot` (monodromy, f, dy/dlambda: the multipliers), its residual the plain run's.
 // `report` counts the runs (also when an integration fails: then Error is thrown).
 struct Correction {
