@@ -364,6 +364,18 @@ std::optional<SpecialPoint> natural_end(const ContinuationOptions& o, const std:
   return std::nullopt;
 }
 
+void count_runs(const Context& c, Branch& br, std::chrono::steady_clock::time_point t_start) {
+  br.shots = c.shots;
+  br.plain_shots = c.plain_shots;
+  br.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+}
+
+void report_point(const Context& c, Branch& br, std::chrono::steady_clock::time_point t_start) {
+  if (!c.o.on_point) return;
+  count_runs(c, br, t_start);
+  c.o.on_point(br);
+}
+
 // The held phases' fractions not given are those of the first cycle.
 void hold_phases_of(Context& c, const Cycle& first) {
   std::vector<HeldPhase>& held = c.shooting.held_phases;
@@ -406,7 +418,7 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
   c.min_rate = 1e-3 * std::abs(cur->shot.f_end[o.shooting.section.state]);
   dir = tangent(c, *cur, dir);  // predictors follow the tangent
   br.points.push_back(describe(c, *cur, dir, br.feature_names));
-  if (o.on_point) o.on_point(br.points.back(), 0);
+  report_point(c, br, t_start);
   const double lo = std::min(o.start, o.end), hi = std::max(o.start, o.end);
   double ds = o.initial_step, amax = br.points[0].amplitude;
   while (true) {
@@ -444,7 +456,7 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
                             br.points.back().period_ms, std::string("describing the next cycle: ") + e.what()});
       break;
     }
-    if (o.on_point) o.on_point(br.points.back(), br.points.size() - 1);
+    report_point(c, br, t_start);
     cur = std::move(next);
     dir = new_dir;
     const BranchPoint& last = br.points.back();
@@ -460,9 +472,7 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
       break;
     }
   }
-  br.shots = c.shots;
-  br.plain_shots = c.plain_shots;
-  br.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  count_runs(c, br, t_start);
   return br;
 }
 

@@ -43,8 +43,9 @@ struct ContinuationOptions {
   double max_period_factor = 10.0;    // "period_unbounded" once T exceeds this times the first period
   double hopf_amplitude_fraction = 0.05;  // "hopf" once the amplitude falls below this fraction of the largest
   int locate_iterations = 8;          // secant iterations that locate a special point
-  // Called with each new branch point and its index (progress lines of the verb); may be empty.
-  std::function<void(const struct BranchPoint&, size_t)> on_point;
+  // Called with the branch so far after each new point (its last point is the new one; the
+  // progress lines and the partial file of the verb); may be empty.
+  std::function<void(const struct Branch&)> on_point;
 };
 
 struct BranchPoint {

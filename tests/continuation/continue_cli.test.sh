@@ -29,6 +29,12 @@ max_period_ms = 150
 TOML
 out=$("$PHASMID" continue "$tmp/sl.toml" -o "$tmp/sl.h5" -q --json) || { echo "FAIL continue: $out"; exit 1; }
 echo "$out"
+# The branch so far went to sl.h5.partial after each point; the complete file replaced it.
+[ -e "$tmp/sl.h5.partial" ] && { echo "FAIL: sl.h5.partial left after the run"; fail=1; }
+# A directory as the output is refused before any work (one line naming it).
+mkdir "$tmp/dir.h5"
+err=$("$PHASMID" continue "$tmp/sl.toml" -o "$tmp/dir.h5" -q 2>&1) && { echo "FAIL: directory output accepted"; fail=1; }
+grep -q "dir.h5" <<<"$err" || { echo "FAIL error text: $err"; fail=1; }
 # The branch ends at the Hopf point: |lambda_H| < 1e-5, period 100 ms.
 /usr/bin/python3 - "$out" <<'PY' || fail=1
 import json, sys
