@@ -69,11 +69,8 @@ int run_continue(const ContinueArgs& a) {
   };
   if (a.trace)
     options.shooting.on_iteration = [model, &options](int it, double res, size_t worst, bool monodromy) {
-      const size_t n = model->num_states();
-      const std::string where = worst < n ? model->states().at(worst).name
-                                : worst > n ? "held phase " + options.shooting.held_phases.at(worst - n - 1).name : "section";
-      std::cerr << "phasmid continue:   iteration " << it << ": residual " << res << " (largest: " << where << ")"
-                << (monodromy ? " (monodromy)" : "") << "\n";
+      std::cerr << "phasmid continue:   iteration " << it << ": residual " << res << " (largest: "
+                << continuation::row_name(*model, options.shooting, worst) << ")" << (monodromy ? " (monodromy)" : "") << "\n";
     };
   const continuation::Branch branch = continuation::continue_cycles(*model, model->parameters().values(), options);
   io::H5Writer w(a.out);

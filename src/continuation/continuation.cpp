@@ -28,6 +28,7 @@ struct Context {
   // A solution crossing the section slower than this (in its direction) is refused: Newton
   // may converge to an equilibrium on the section (any T, f = 0) once the cycle is gone.
   double min_rate = 0.0;
+  NewtonReport last_failure;  // of the last corrector that did not converge
 };
 
 struct Solved {
@@ -54,6 +55,7 @@ std::optional<Solved> correct(Context& c, const Vec& z, const Vec& z_pred, const
   }
   c.shots += rep.shots;
   c.plain_shots += rep.plain_shots;
+  if (!rep.converged) c.last_failure = rep;
   if (c.integration_failed || !rep.converged) return std::nullopt;
   const size_t sec = so.section.state;
   const double dir = so.section.direction == 0 ? 1.0 : so.section.direction;
@@ -257,7 +259,9 @@ SpecialPoint failure_end(const Context& c, const std::vector<BranchPoint>& pts, 
     return hopf_end(pts, "no cycle beyond; the amplitude was shrinking");
   if (a && b.period_ms > 2.0 * t_first && b.period_ms > a->period_ms)
     return {pts.size() - 1, "period_unbounded", b.parameter, b.period_ms, "no cycle beyond; the period was growing"};
-  return {pts.size() - 1, "no_convergence", b.parameter, b.period_ms, "Newton shooting failed down to the minimum step"};
+  return {pts.size() - 1, "no_convergence", b.parameter, b.period_ms,
+          "Newton shooting failed down to the minimum step; last residual " + std::to_string(c.last_failure.residual) +
+              ", largest in " + row_name(c.model, c.shooting, c.last_failure.worst_row)};
 }
 
 ContinuationOptions checked(const model::OdeModel& model, ContinuationOptions o) {

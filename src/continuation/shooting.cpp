@@ -246,6 +246,12 @@ double max_abs(const Eigen::VectorXd& f, size_t n) {
   return r;
 }
 
+size_t worst_row(const Eigen::VectorXd& f, size_t n) {
+  Eigen::Index worst = 0;
+  f.head(f.size() - 1).cwiseAbs().maxCoeff(&worst);  // the last row is solved exactly
+  return static_cast<size_t>(worst) == n ? 0 : static_cast<size_t>(worst);  // nor the section's
+}
+
 }  // namespace
 
 Correction correct_cycle(const model::OdeModel& model, const std::vector<double>& p, const ParameterPath& path,
@@ -278,11 +284,8 @@ Correction correct_cycle(const model::OdeModel& model, const std::vector<double>
     const double res = max_abs(F, n);
     report.iterations = it;
     report.residual = res;
-    if (o.on_iteration) {
-      Eigen::Index worst = 0;
-      F.cwiseAbs().head(static_cast<Eigen::Index>(n + 1 + o.held_phases.size())).maxCoeff(&worst);
-      o.on_iteration(it, res, static_cast<size_t>(worst), fresh);
-    }
+    report.worst_row = worst_row(F, n);
+    if (o.on_iteration) o.on_iteration(it, res, report.worst_row, fresh);
     // Integration errors reach y(T) amplified by the largest multiplier (unstable cycles).
     if (res < o.tolerance * gr) {  // the section's and the row's equations are linear: solved exactly
       if (!fresh) s = eq.linearise(z);
@@ -330,6 +333,13 @@ Correction correct_cycle(const model::OdeModel& model, const std::vector<double>
   out.z = z;
   out.shot = std::move(s);
   return out;
+}
+
+std::string row_name(const model::OdeModel& m, const ShootingOptions& o, size_t i) {
+  const size_t n = m.num_states();
+  if (i < n) return m.states().at(i).name;
+  if (i > n && i - n - 1 < o.held_phases.size()) return "held phase " + o.held_phases[i - n - 1].name;
+  return "section";
 }
 
 Cycle newton_fixed_parameter(const model::OdeModel& model, const std::vector<double>& p, const Cycle& guess,

@@ -85,8 +85,7 @@ struct ShootingOptions {
   // continuation sets its arclength scaling W^-1); empty: 1 for each.
   Eigen::VectorXd scale;
   // Called at each corrector iteration with its index, the residual max |y(T) - y0| (and of
-  // the held phases), the row where it is largest (a state index; n + 1 + j: held phase j) and
-  // whether the monodromy was computed at that point (the verb's --trace); may be empty.
+  // the held phases), the row where it is largest (NewtonReport::worst_row) and whether the monodromy was computed at that point (the verb's --trace); may be empty.
   std::function<void(int, double, size_t, bool)> on_iteration;
 };
 
@@ -118,6 +117,7 @@ Shot shoot(const model::OdeModel& model, std::vector<double> p, const ParameterP
 struct NewtonReport {
   int iterations = 0;
   double residual = 0.0;  // max |y(T) - y0| at the returned cycle
+  size_t worst_row = 0;   // where it is largest: a state index, or n + 1 + j for held phase j
   bool converged = false;
   long shots = 0, plain_shots = 0;  // integrations with sensitivities / without
 };
@@ -182,6 +182,10 @@ Eigen::MatrixXd newton_matrix(const Shot& shot, size_t section_state, const Eige
 // stops ("root found at and very near" the start: CV_ILL_INPUT).
 std::vector<double> on_section(std::vector<double> y0, const solver::RootSpec& section);
 std::vector<solver::RootSpec> aligned_roots(std::vector<solver::RootSpec> roots, const solver::RootSpec& section);
+
+// The name of row i of the cycle equations (NewtonReport::worst_row): its state's, or
+// "held phase <name>".
+std::string row_name(const model::OdeModel& model, const ShootingOptions& options, size_t i);
 
 // Newton on (y0, T) at fixed parameters, from `guess`; `shot` (if given) receives the
 // linearisation at the returned cycle.
