@@ -737,7 +737,8 @@
   function continuation(c) {
     var sec = section('continuation', 'Continuation',
       'Periodic orbits followed in ' + c.parameter + ' (pseudo-arclength, Newton shooting on a Poincaré section). ' +
-      'Solid: stable cycle, dashed: unstable; markers: special points. The branch ended with: ' + (c.end || 'unknown') + '.');
+      'Solid: stable cycle, dashed: unstable; markers: special points. ' +
+      (c.partial ? 'Not a finished branch: ' + c.partial + '.' : 'The branch ended with: ' + (c.end || 'unknown') + '.'));
     var xl = withUnits(c.parameter, c.parameter_units);
     var unstable = function (ctx) { return !c.stable[ctx.p0DataIndex] || !c.stable[ctx.p1DataIndex] ? [6, 4] : undefined; };
     var quantities = [{ name: 'period_ms', units: 'ms', values: c.period_ms }].concat(

@@ -58,6 +58,10 @@ void extract_continuation(const io::H5Reader& r, json& out) {
   c["parameter"] = r.read_string_attribute(g, "parameter");
   c["parameter_units"] = units(r, g + "/parameter");
   c["end"] = r.read_string_attribute(g, "end");
+  try {  // only in the OUT.partial file of a run still going (docs/continuation.md)
+    c["partial"] = r.read_string_attribute(g, "partial");
+  } catch (const Error&) {
+  }
   c["values"] = numbers(par);
   c["period_ms"] = numbers(r.read_doubles(g + "/period_ms"));
   json stable = json::array();
