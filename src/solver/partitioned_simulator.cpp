@@ -68,6 +68,8 @@ struct PartSolver {
   StepHistory history;
   std::vector<double> y0, f0;  // record_step's buffers
   std::vector<Event> found_in_window;
+  std::vector<int> found;   // root_info's buffer
+  long window_steps = 0;    // steps in its last window: the forecast of its next one's cost
   std::exception_ptr failure;
 
   double export_value(size_t e, double at) const;
@@ -353,6 +355,7 @@ class Partitioned {
   std::vector<size_t> deferred_;    // res.events entries that are trigger crossings not yet fed
   PartSolver* stepped_ = nullptr;   // the part of the last advance
   WindowPool pool_;                 // windowed runs' worker threads
+  std::vector<PartSolver*> todo_, claim_;  // a window's parts, in part and in claim order
   int flag_ = 0;
   std::vector<int> found_;
 };
@@ -452,23 +455,29 @@ double Partitioned::advance_window(CommandSchedule& s) {
   for (auto& ps : run_.parts) t_keep = std::min(t_keep, ps->t);
   const double t1 = std::min(t_keep + options_.window_ms, s.next_stop());
   for (size_t id : deferred_) t_keep = std::min(t_keep, res_.events[id].t);
-  std::vector<PartSolver*> todo;
+  todo_.clear();
   for (auto& ps : run_.parts) {
     ps->take_snapshot(options_.window_order);
     // Steps ending before t_keep are never read again (outputs, events and roll-backs come later).
     ps->history.drop_before(t_keep);
-    if (ps->t < t1) todo.push_back(ps.get());
+    if (ps->t < t1) todo_.push_back(ps.get());
   }
-  pool_.run(static_cast<int>(todo.size()), [&](int i) {
+  // Claimed longest first by the previous window's steps (LPT scheduling): the short tasks come
+  // last, where a thread would otherwise wait for the other's long one. The numbers do not
+  // depend on the order; the events are merged in part order below.
+  claim_ = todo_;
+  std::stable_sort(claim_.begin(), claim_.end(),
+                   [](const PartSolver* a, const PartSolver* b) { return a->window_steps > b->window_steps; });
+  pool_.run(static_cast<int>(claim_.size()), [&](int i) {
     try {
-      step_until(*todo[i], s, t1);
+      step_until(*claim_[i], s, t1);
     } catch (...) {
-      todo[i]->failure = std::current_exception();
+      claim_[i]->failure = std::current_exception();
     }
   });
-  for (PartSolver* ps : todo)
+  for (PartSolver* ps : todo_)
     if (ps->failure) std::rethrow_exception(ps->failure);
-  for (PartSolver* ps : todo) {
+  for (PartSolver* ps : todo_) {
     for (Event& e : ps->found_in_window) add_event(*ps, std::move(e));
     ps->found_in_window.clear();
   }
@@ -480,13 +489,14 @@ double Partitioned::advance_window(CommandSchedule& s) {
 // One part to t1 (or its stop) on the calling thread; touches only ps and its session.
 void Partitioned::step_until(PartSolver& ps, const CommandSchedule& s, double t1) const {
   const size_t n = model_.num_states();
-  std::vector<int> found(ps.roots.size());
+  ps.window_steps = 0;
   while (ps.t < t1) {
     double tret = ps.t;
     const bool continues = !ps.restart_pending && ps.history.continues_at(ps.t);
     const int flag = step_once(ps, s, tret);
-    step_roots(ps, flag, tret, n, found, [&](Event e) { ps.found_in_window.push_back(std::move(e)); });
+    step_roots(ps, flag, tret, n, ps.found, [&](Event e) { ps.found_in_window.push_back(std::move(e)); });
     ps.record_step(continues);
+    ++ps.window_steps;
   }
   ps.update_polynomial();  // what the others read in the next window
 }
