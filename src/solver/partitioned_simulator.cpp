@@ -18,6 +18,7 @@
 #include "solver/erk_session.hpp"
 #include "solver/output_sink.hpp"
 #include "solver/run_loop.hpp"
+#include "solver/step_history.hpp"
 #include "solver/window_pool.hpp"
 
 namespace phasmid::solver {
@@ -29,14 +30,6 @@ namespace {
 constexpr int kMaxOrder = 12;  // Adams' maximum; BDF stops at 5
 
 struct Run;
-
-// One step of a part in windowed runs: its interpolating polynomial over [t0, tn] for all its
-// own states, as Taylor coefficients at tn: c[d * n_own + i] = (d^d y_i / dt^d)(tn) / d!.
-struct StepPoly {
-  double t0 = 0.0, tn = 0.0;
-  int order = 0;
-  std::vector<double> c;
-};
 
 // One part's integrator and the polynomial through which the other parts read its angles.
 struct PartSolver {
@@ -72,9 +65,11 @@ struct PartSolver {
   double snap_t_poly = 0.0;
   int snap_order = 0, snap_extrapolation_order = 0;
   std::vector<double> snap_coef;
-  std::deque<StepPoly> history;
-  std::vector<std::vector<double>> spare;  // coefficient buffers of dropped steps, for reuse
+  StepHistory history;
+  std::vector<double> y0, f0;  // record_step's buffers
   std::vector<Event> found_in_window;
+  std::vector<int> found;   // root_info's buffer
+  long window_steps = 0;    // steps in its last window: the forecast of its next one's cost
   std::exception_ptr failure;
 
   double export_value(size_t e, double at) const;
@@ -101,43 +96,24 @@ struct PartSolver {
     t_poly = tn;
   }
 
-  // Windowed runs: the last step's polynomial for all own states into the history, and the
-  // exports' coefficients from it.
-  void record_step() {
-    const int q = session->interpolation_degree();
-    const double tn = session->current_time();
-    const size_t ns = states.size(), ne = exports.size();
-    StepPoly sp;
-    sp.t0 = tn - session->last_step();
-    sp.tn = tn;
-    sp.order = q;
-    if (!spare.empty()) {
-      sp.c = std::move(spare.back());
-      spare.pop_back();
+  // Windowed runs: the last step into the history, once its roots have been taken (the
+  // session's y() is then the state at the step's end): the derivative at its end, and the
+  // values at its start unless the previous step ended there without a restart.
+  void record_step(bool continues) {
+    const double tn = session->current_time(), t0 = tn - session->last_step();
+    if (!continues) {
+      take_dky(t0, 0, y0);
+      take_dky(t0, 1, f0);
     }
-    sp.c.resize(static_cast<size_t>(q + 1) * ns);
-    double factorial = 1.0;
-    for (int d = 0; d <= q; ++d) {
-      if (d > 0) factorial *= d;
-      check_cvodes(session->dky(tn, d, session->work()), "the last step's interpolant (GetDky)");
-      const double* w = N_VGetArrayPointer(session->work());
-      for (size_t i = 0; i < ns; ++i) sp.c[static_cast<size_t>(d) * ns + i] = w[i] / factorial;
-      for (size_t e = 0; e < ne; ++e) coef[static_cast<size_t>(d) * ne + e] = sp.c[static_cast<size_t>(d) * ns + exports[e]];
-    }
-    order = q;
-    t_poly = tn;
-    history.push_back(std::move(sp));
+    check_cvodes(session->dky(tn, 1, session->work()), "the last step's interpolant (GetDky)");
+    history.record(t0, tn, continues ? nullptr : y0.data(), continues ? nullptr : f0.data(),
+                   N_VGetArrayPointer(session->y()), N_VGetArrayPointer(session->work()));
   }
 
-  // Windowed runs: own states at t from the latest recorded step that covers t.
-  bool state_from_history(double t, double* row) const {
-    const size_t ns = states.size();
-    for (auto it = history.rbegin(); it != history.rend(); ++it) {
-      if (t < it->t0 || t > it->tn) continue;
-      for (size_t i = 0; i < ns; ++i) row[states[i]] = horner(it->c, ns, i, it->order, t - it->tn);
-      return true;
-    }
-    return false;
+  void take_dky(double t, int k, std::vector<double>& out) {
+    check_cvodes(session->dky(t, k, session->work()), "the last step's interpolant (GetDky)");
+    const double* w = N_VGetArrayPointer(session->work());
+    out.assign(w, w + states.size());
   }
 
   // What the others read in the coming window: the present polynomial.
@@ -229,6 +205,7 @@ void build_parts(Run& run, const model::OdeModel& model, const model::ModelParti
     ps->run = &run;
     ps->name = P.names[k];
     ps->states = P.states[k];
+    ps->history = StepHistory(ps->states.size());
     ps->inputs = P.inputs[k];
     ps->eq = model.make_part(P, k);
     if (!ps->eq) throw Error("internal: model " + model.kind() + " has no equations for part " + ps->name);
@@ -378,6 +355,7 @@ class Partitioned {
   std::vector<size_t> deferred_;    // res.events entries that are trigger crossings not yet fed
   PartSolver* stepped_ = nullptr;   // the part of the last advance
   WindowPool pool_;                 // windowed runs' worker threads
+  std::vector<PartSolver*> todo_, claim_;  // a window's parts, in part and in claim order
   int flag_ = 0;
   std::vector<int> found_;
 };
@@ -477,26 +455,29 @@ double Partitioned::advance_window(CommandSchedule& s) {
   for (auto& ps : run_.parts) t_keep = std::min(t_keep, ps->t);
   const double t1 = std::min(t_keep + options_.window_ms, s.next_stop());
   for (size_t id : deferred_) t_keep = std::min(t_keep, res_.events[id].t);
-  std::vector<PartSolver*> todo;
+  todo_.clear();
   for (auto& ps : run_.parts) {
     ps->take_snapshot(options_.window_order);
     // Steps ending before t_keep are never read again (outputs, events and roll-backs come later).
-    while (ps->history.size() > 1 && ps->history.front().tn < t_keep) {
-      ps->spare.push_back(std::move(ps->history.front().c));
-      ps->history.pop_front();
-    }
-    if (ps->t < t1) todo.push_back(ps.get());
+    ps->history.drop_before(t_keep);
+    if (ps->t < t1) todo_.push_back(ps.get());
   }
-  pool_.run(static_cast<int>(todo.size()), [&](int i) {
+  // Claimed longest first by the previous window's steps (LPT scheduling): the short tasks come
+  // last, where a thread would otherwise wait for the other's long one. The numbers do not
+  // depend on the order; the events are merged in part order below.
+  claim_ = todo_;
+  std::stable_sort(claim_.begin(), claim_.end(),
+                   [](const PartSolver* a, const PartSolver* b) { return a->window_steps > b->window_steps; });
+  pool_.run(static_cast<int>(claim_.size()), [&](int i) {
     try {
-      step_until(*todo[i], s, t1);
+      step_until(*claim_[i], s, t1);
     } catch (...) {
-      todo[i]->failure = std::current_exception();
+      claim_[i]->failure = std::current_exception();
     }
   });
-  for (PartSolver* ps : todo)
+  for (PartSolver* ps : todo_)
     if (ps->failure) std::rethrow_exception(ps->failure);
-  for (PartSolver* ps : todo) {
+  for (PartSolver* ps : todo_) {
     for (Event& e : ps->found_in_window) add_event(*ps, std::move(e));
     ps->found_in_window.clear();
   }
@@ -508,13 +489,16 @@ double Partitioned::advance_window(CommandSchedule& s) {
 // One part to t1 (or its stop) on the calling thread; touches only ps and its session.
 void Partitioned::step_until(PartSolver& ps, const CommandSchedule& s, double t1) const {
   const size_t n = model_.num_states();
-  std::vector<int> found(ps.roots.size());
+  ps.window_steps = 0;
   while (ps.t < t1) {
     double tret = ps.t;
+    const bool continues = !ps.restart_pending && ps.history.continues_at(ps.t);
     const int flag = step_once(ps, s, tret);
-    ps.record_step();
-    step_roots(ps, flag, tret, n, found, [&](Event e) { ps.found_in_window.push_back(std::move(e)); });
+    step_roots(ps, flag, tret, n, ps.found, [&](Event e) { ps.found_in_window.push_back(std::move(e)); });
+    ps.record_step(continues);
+    ++ps.window_steps;
   }
+  ps.update_polynomial();  // what the others read in the next window
 }
 
 void Partitioned::handle_events(CommandSchedule& s) {
@@ -529,7 +513,7 @@ void Partitioned::handle_events(CommandSchedule& s) {
 // Writes part `ps`'s states at time t (within its last step) into the full-size state `row`.
 void Partitioned::write_states(PartSolver& ps, double t, double* row) const {
   if (run_.windowed) {
-    if (!ps.state_from_history(t, row))
+    if (!ps.history.at(t, ps.states, row))
       throw SolverError("internal: part " + ps.name + " has no step covering t = " + std::to_string(t) +
                         " ms; set [simulation] threads = 1");
     return;
@@ -642,7 +626,7 @@ void Partitioned::roll_back(PartSolver& x, double tau) {
   x.session->restart(tau);
   x.restart_pending = false;
   x.t = tau;
-  while (!x.history.empty() && x.history.back().t0 >= tau) x.history.pop_back();
+  x.history.drop_from(tau);
   while (x.next_out > first_out_ && output_times_[x.next_out - 1] > tau) --parts_done(--x.next_out);
 }
 

@@ -20,8 +20,10 @@
 //
 // On several threads (SolverOptions::threads >= 2) the parts step concurrently in windows of
 // SolverOptions::window_ms: each reads the others only from copies of their polynomials taken
-// at the window's start, and records its steps' polynomials, by which its states at the
-// others' events, at outputs and at roll-backs are found after the window. The numbers depend
+// at the window's start, and records each step's end values and derivatives
+// (solver/step_history.hpp), by which its states at the others' events, at outputs and at
+// roll-backs are found after the window; the polynomial the others read next is taken once, at
+// its last step in the window. The numbers depend
 // on the window, not on the thread count or timing; threads = 1 is the scheduler above.
 //
 // Not for forward sensitivities (Simulator::run then integrates the whole model as one
