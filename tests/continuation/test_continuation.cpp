@@ -146,6 +146,24 @@ TEST(Continuation, TorusBifurcationLocatedWhereTheComplexPairCrossesTheUnitCircl
 }
 
 // ---- a family of cycles: two uncoupled Stuart-Landau oscillators ---------------------------
+// A point of the uncoupled Stuart-Landau pair's branch in lambda (T = 100 ms): the trivial and
+// one neutral multiplier at 1, the two radial ones exp(-2 lambda T), stable, the second
+// oscillator on its circle sqrt(lambda) at the transient's relative phase 1 rad (within
+// phase_tolerance).
+static void expect_pair_point(const BranchPoint& q, double phase_tolerance) {
+  const double T = 100.0, mu = std::exp(-2.0 * q.parameter * T);
+  ASSERT_EQ(q.multipliers.size(), 4u);
+  ASSERT_EQ(q.neutral.size(), 1u) << "lambda " << q.parameter;
+  EXPECT_NEAR(q.multipliers[q.trivial].real(), 1.0, 1e-6);
+  EXPECT_NEAR(q.multipliers[q.neutral[0]].real(), 1.0, 1e-6);
+  for (size_t i = 0; i < 4; ++i)
+    if (q.counted(i)) EXPECT_NEAR(q.multipliers[i].real(), mu, 1e-6) << "lambda " << q.parameter;
+  EXPECT_TRUE(q.stable) << "lambda " << q.parameter;
+  EXPECT_NEAR(q.period_ms, T, 1e-6);
+  EXPECT_NEAR(std::hypot(q.y0[2], q.y0[3]), std::sqrt(q.parameter), 1e-7);
+  EXPECT_NEAR(std::atan2(q.y0[3], q.y0[2]), 1.0, phase_tolerance) << "lambda " << q.parameter;
+}
+
 // pair = true, k = 0: every relative phase gives a cycle, so besides the trivial multiplier a
 // second one is exactly 1, and the radial ones are exp(-2 lambda T) twice. With
 // neutral_tolerance the predictor and the corrector take minimum-norm steps and keep the relative
@@ -159,22 +177,9 @@ TEST(Continuation, NeutralDirectionOfAFamilyOfCyclesIsKeptAndNotCounted) {
   ASSERT_GE(b.points.size(), 4u);
   ASSERT_EQ(b.special.size(), 1u);
   EXPECT_EQ(b.special.back().kind, "range_end");
-  const double T = 100.0;
-  for (const auto& q : b.points) {
-    const double mu = std::exp(-2.0 * q.parameter * T);
-    ASSERT_EQ(q.multipliers.size(), 4u);
-    ASSERT_EQ(q.neutral.size(), 1u) << "lambda " << q.parameter;
-    EXPECT_NEAR(q.multipliers[q.trivial].real(), 1.0, 1e-6);
-    EXPECT_NEAR(q.multipliers[q.neutral[0]].real(), 1.0, 1e-6);
-    for (size_t i = 0; i < 4; ++i)
-      if (q.counted(i)) EXPECT_NEAR(q.multipliers[i].real(), mu, 1e-6) << "lambda " << q.parameter;
-    EXPECT_TRUE(q.stable) << "lambda " << q.parameter;
-    EXPECT_NEAR(q.period_ms, T, 1e-6);
-    EXPECT_NEAR(std::hypot(q.y0[2], q.y0[3]), std::sqrt(q.parameter), 1e-7);
-    // Kept to the isotropy of the arclength weights of x2 and y2 (their ranges over the sampled
-    // first cycle); a step in the family's direction would move it by O(0.1) rad per point.
-    EXPECT_NEAR(std::atan2(q.y0[3], q.y0[2]), 1.0, 1e-4) << "lambda " << q.parameter;
-  }
+  // Kept to the isotropy of the arclength weights of x2 and y2 (their ranges over the sampled
+  // first cycle); a step in the family's direction would move it by O(0.1) rad per point.
+  for (const auto& q : b.points) expect_pair_point(q, 1e-4);
   EXPECT_NEAR(b.points.back().parameter, 0.01, 1e-12);
 }
 
@@ -194,16 +199,7 @@ TEST(Continuation, HeldPhasePinsTheMemberOfAFamilyOfCycles) {
   EXPECT_EQ(b.special.back().kind, "range_end");
   ASSERT_EQ(b.held_phases.size(), 1u);
   EXPECT_NEAR(b.held_phases[0].fraction, (2 * M_PI - 1) / (2 * M_PI), 1e-7);
-  const double T = 100.0;
-  for (const auto& q : b.points) {
-    ASSERT_EQ(q.neutral.size(), 1u) << "lambda " << q.parameter;
-    for (size_t i = 0; i < 4; ++i)
-      if (q.counted(i)) EXPECT_NEAR(q.multipliers[i].real(), std::exp(-2.0 * q.parameter * T), 1e-6);
-    EXPECT_TRUE(q.stable) << "lambda " << q.parameter;
-    EXPECT_NEAR(q.period_ms, T, 1e-6);
-    EXPECT_NEAR(std::hypot(q.y0[2], q.y0[3]), std::sqrt(q.parameter), 1e-7);
-    EXPECT_NEAR(std::atan2(q.y0[3], q.y0[2]), 1.0, 1e-8) << "lambda " << q.parameter;
-  }
+  for (const auto& q : b.points) expect_pair_point(q, 1e-8);
   EXPECT_NEAR(b.points.back().parameter, 0.01, 1e-12);
 }
 
