@@ -63,6 +63,7 @@ int run_continue(const ContinueArgs& a) {
     write_run_file(w, cfg, a.sets, *scenario);
     io::write_parameters(w, *model, model->parameters().values());
     continuation::write_branch_h5(w, *model, br);
+    w.set_attribute("/continuation", "end", "");  // not ended: the last special point is not the end
     w.set_attribute("/continuation", "partial",
                     "the branch so far: the run was still going when this file was written (" + a.out + " replaces it at the end)");
     w.commit();
