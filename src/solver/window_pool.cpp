@@ -1,5 +1,7 @@
 #include "solver/window_pool.hpp"
 
+#include <stdexcept>
+
 namespace phasmid::solver {
 
 namespace {
@@ -26,8 +28,11 @@ bool WindowPool::claim_and_run(uint32_t generation) {
   uint64_t t = ticket_.load(std::memory_order_acquire);
   for (;;) {
     if (static_cast<uint32_t>(t >> 32) != generation) return false;
-    const uint32_t i = static_cast<uint32_t>(t);
-    if (static_cast<int>(i) >= n_) return true;
+    // The count is read from the ticket, not from a member: a worker leaving the previous call
+    // would otherwise compare that call's exhausted ticket with the next call's larger count,
+    // which the caller sets before it publishes the new generation, and claim a task twice.
+    const uint32_t i = static_cast<uint32_t>(t & 0xffff), n = static_cast<uint32_t>((t >> 16) & 0xffff);
+    if (i >= n) return true;
     if (!ticket_.compare_exchange_weak(t, t + 1, std::memory_order_acq_rel)) continue;
     (*task_)(static_cast<int>(i));
     done_.fetch_add(1, std::memory_order_release);
@@ -59,13 +64,14 @@ void WindowPool::run(int n, const std::function<void(int)>& task) {
     for (int i = 0; i < n; ++i) task(i);
     return;
   }
+  if (n > kMaxTasks) throw std::invalid_argument("WindowPool::run: more than 65535 tasks in one call");
   task_ = &task;
-  n_.store(n, std::memory_order_relaxed);
   done_.store(0, std::memory_order_relaxed);
   {
     std::lock_guard<std::mutex> lock(m_);
     ++generation_;
-    ticket_.store(static_cast<uint64_t>(generation_) << 32, std::memory_order_release);
+    ticket_.store(static_cast<uint64_t>(generation_) << 32 | static_cast<uint64_t>(n) << 16,
+                  std::memory_order_release);
   }
   wake_.notify_all();
   claim_and_run(generation_);

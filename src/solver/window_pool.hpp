@@ -36,9 +36,9 @@ class WindowPool {
   std::condition_variable wake_;
   bool stop_ = false;
   uint32_t generation_ = 0;
-  std::atomic<uint64_t> ticket_{0};  // generation << 32 | next task index
+  static constexpr int kMaxTasks = 0xffff;
+  std::atomic<uint64_t> ticket_{0};  // generation << 32 | task count << 16 | next task index
   std::atomic<int> done_{0};
-  std::atomic<int> n_{0};
   const std::function<void(int)>* task_ = nullptr;
 };
 
