@@ -114,6 +114,16 @@ struct NetworkComponents {
   std::vector<size_t> synapses, modulations, neurons, muscles, joints;
 };
 
+// Per-thread working storage of one evaluation (NetworkModel::eval_components), indexed by
+// neuron or muscle; nap and mn hold the evaluated neurons' parameters, gathered once per
+// evaluation, by position in NetworkComponents::neurons (a part's few stay in the L1 cache).
+template <class T>
+struct NetworkScratch {
+  std::vector<T> I_syn, g_extra, tone_release, rate_mn, args, ex;
+  std::vector<NapNeuronParams<T>> nap;
+  std::vector<MotoneuronParams<T>> mn;
+};
+
 class NetworkModel : public OdeModelT<NetworkModel> {
  public:
   explicit NetworkModel(std::string kind) : kind_(std::move(kind)) {}
@@ -136,6 +146,7 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   const std::vector<Synapse>& synapses() const { return synapses_; }
   const std::vector<Modulation>& modulations() const { return modulations_; }
   void add_modulation(Modulation m) {
+    conditions_ += m.conditions.size();
     modulations_.push_back(std::move(m));
     all_.modulations.push_back(modulations_.size() - 1);
   }
@@ -174,6 +185,26 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   void eval_components(const NetworkComponents& c, double t, const T* y, const T* p, T* ydot) const;
 
  private:
+  template <class T>
+  size_t exp_args(const NetworkComponents& comp, const T* y, const T* p, NetworkScratch<T>& sc) const;
+  template <class T>
+  void currents_and_drives(const NetworkComponents& comp, double t, const T* y, const T* p, NetworkScratch<T>& sc,
+                           size_t& k) const;
+  template <class T>
+  void neuron_equations(const NetworkComponents& comp, const T* y, const T* p, NetworkScratch<T>& sc, size_t& k,
+                        T* ydot) const;
+  template <class T>
+  void joint_equations(const Joint& j, const T* y, const T* p, const NetworkScratch<T>& sc, T* ydot) const;
+  // Gathered in place: a returned struct's copy read its fields back before their stores had
+  // completed (store-forwarding stalls, a fifth of the evaluation's time).
+  template <class T>
+  static void gather_params(const NapIdx& x, const T* p, NapNeuronParams<T>& q);
+  template <class T>
+  static void gather_params(const MotoneuronIdx& x, const T* p, MotoneuronParams<T>& q);
+  // At least the exponentials of one evaluation of all components (exp_args).
+  size_t max_exp_args() const {
+    return 2 * synapses_.size() + conditions_ + kMotoneuronExpArgs * neurons_.size() + muscles_.size();
+  }
   size_t neuron_state_count(const Neuron& n) const;
   size_t modulation_target_state(const Modulation& m) const;
 
@@ -188,6 +219,7 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   size_t act_a0_ = 0, act_b_ = 0, act_V_ = 0, act_w_ = 0;
   bool rate_mn_ = false;
   RateMotoneuronIdx rate_{};
+  size_t conditions_ = 0;  // of all modulations
 };
 
 template <class T>
@@ -196,40 +228,101 @@ T smooth_step(const T& x, const T& width) {
   return T(1.0) / (T(1.0) + exp(-x / width));
 }
 
+// Phase 1 of an evaluation (see model/neurons.hpp): the arguments of every exponential of the
+// components into sc.args, in the order phase 3 reads them (and the neurons' parameters into
+// sc.nap, sc.mn); returns their count.
 template <class T>
-void NetworkModel::eval_components(const NetworkComponents& comp, double t, const T* y, const T* p, T* ydot) const {
-  // rate_mn: each rate MN's R(V), computed once for its own equation and its muscle's.
-  // Only the entries of comp's neurons and muscles are used (synapses and modulations target them).
-  thread_local std::vector<T> I_syn, g_extra, tone_release, rate_mn;
-  I_syn.resize(neurons_.size());
-  g_extra.resize(neurons_.size());
-  if (rate_mn_) rate_mn.resize(neurons_.size());
-  tone_release.resize(muscles_.size());
-  for (size_t i : comp.neurons) I_syn[i] = g_extra[i] = T(0.0);
-  for (size_t i : comp.muscles) tone_release[i] = T(0.0);
-
+size_t NetworkModel::exp_args(const NetworkComponents& comp, const T* y, const T* p, NetworkScratch<T>& sc) const {
+  T* a = sc.args.data();
   for (size_t si : comp.synapses) {
     const Synapse& s = synapses_[si];
-    const T& V_pre = y[neurons_[s.pre].state];
-    const T& V_post = y[neurons_[s.post].state];
-    if (s.gate.neuron == kNoIndex) {
-      I_syn[s.post] += synaptic_current(p[s.q.g], p[s.q.V_h], p[s.q.gamma], p[s.q.E], V_pre, V_post);
-    } else {
-      const T& V_gate = y[neurons_[s.gate.neuron].state];
-      T open = T(1.0) - p[s.gate.strength] * boltzmann(V_gate, p[s.gate.V_h], p[s.gate.gamma]);
-      I_syn[s.post] += synaptic_current(T(p[s.q.g] * open), p[s.q.V_h], p[s.q.gamma], p[s.q.E], V_pre, V_post);
+    if (s.gate.neuron != kNoIndex) *a++ = p[s.gate.gamma] * (y[neurons_[s.gate.neuron].state] - p[s.gate.V_h]);
+    *a++ = p[s.q.gamma] * (y[neurons_[s.pre].state] - p[s.q.V_h]);
+  }
+  for (size_t mi : comp.modulations)
+    for (const Condition& c : modulations_[mi].conditions) {
+      if (c.kind == Condition::AngleBelow) *a++ = -T(p[c.threshold] - y[c.angle_state] * units::kDegPerRad) / p[c.width];
+      if (c.kind == Condition::AngleAbove) *a++ = -T(y[c.angle_state] * units::kDegPerRad - p[c.threshold]) / p[c.width];
     }
+  for (size_t j = 0; j < comp.neurons.size(); ++j) {
+    const Neuron& n = neurons_[comp.neurons[j]];
+    if (!n.motoneuron) {
+      gather_params(n.nap, p, sc.nap[j]);
+      nap_exp_args(sc.nap[j], y[n.state], a);
+      a += kNapExpArgs;
+      continue;
+    }
+    gather_params(n.mn, p, sc.mn[j]);
+    if (!rate_mn_) {
+      motoneuron_exp_args(sc.mn[j], y[n.state], a);
+      a += kMotoneuronExpArgs;
+    }
+  }
+  if (!rate_mn_)
+    for (size_t mi : comp.muscles)
+      *a++ = -T(y[neurons_[muscles_[mi].motoneuron].state] - p[act_V_]) / p[act_w_];
+  return static_cast<size_t>(a - sc.args.data());
+}
+
+template <class T>
+void NetworkModel::gather_params(const NapIdx& x, const T* p, NapNeuronParams<T>& q) {
+  static_assert(sizeof(NapIdx) == 14 * sizeof(size_t) && sizeof(NapNeuronParams<T>) == 14 * sizeof(T));
+  const size_t* index = &x.C_m;  // NapIdx lists the indices in NapNeuronParams' order
+  T* f = &q.C_m;
+  for (int k = 0; k < 14; ++k) f[k] = p[index[k]];
+}
+
+template <class T>
+void NetworkModel::gather_params(const MotoneuronIdx& x, const T* p, MotoneuronParams<T>& q) {
+  T* f = &q.C_m;
+  for (int k = 0; k < 32; ++k) f[k] = p[x.v[k]];
+}
+
+template <class T>
+void NetworkModel::eval_components(const NetworkComponents& comp, double t, const T* y, const T* p, T* ydot) const {
+  // Only the entries of comp's neurons and muscles are used (synapses and modulations target them).
+  thread_local NetworkScratch<T> sc;
+  sc.I_syn.resize(neurons_.size());
+  sc.g_extra.resize(neurons_.size());
+  sc.nap.resize(comp.neurons.size());
+  sc.mn.resize(comp.neurons.size());
+  if (rate_mn_) sc.rate_mn.resize(neurons_.size());
+  sc.tone_release.resize(muscles_.size());
+  for (size_t i : comp.neurons) sc.I_syn[i] = sc.g_extra[i] = T(0.0);
+  for (size_t i : comp.muscles) sc.tone_release[i] = T(0.0);
+
+  // Phases 1 and 2: every exponential at once.
+  sc.args.resize(max_exp_args());
+  sc.ex.resize(max_exp_args());
+  exp_each(sc.args.data(), sc.ex.data(), exp_args(comp, y, p, sc));
+  // Phase 3, reading them in the order phase 1 wrote them.
+  size_t k = 0;
+  currents_and_drives(comp, t, y, p, sc, k);
+  neuron_equations(comp, y, p, sc, k, ydot);
+  for (size_t ji : comp.joints) joint_equations(joints_[ji], y, p, sc, ydot);
+}
+
+// Synaptic currents (2.7), with the optional presynaptic gate, and the modulations' drives and
+// rest-tone releases.
+template <class T>
+void NetworkModel::currents_and_drives(const NetworkComponents& comp, double t, const T* y, const T* p,
+                                       NetworkScratch<T>& sc, size_t& k) const {
+  const T* e = sc.ex.data();
+  auto logistic = [&] { return T(1.0) / (T(1.0) + e[k++]); };  // boltzmann (2.1), smooth_step
+  for (size_t si : comp.synapses) {
+    const Synapse& s = synapses_[si];
+    T g = p[s.q.g];
+    if (s.gate.neuron != kNoIndex) g *= T(1.0) - p[s.gate.strength] * logistic();
+    sc.I_syn[s.post] += g * logistic() * (y[neurons_[s.post].state] - p[s.q.E]);
   }
   for (size_t mi : comp.modulations) {
     const Modulation& m = modulations_[mi];
     T gate(1.0);
     for (const Condition& c : m.conditions) {
       switch (c.kind) {
-        case Condition::AngleBelow:
-          gate *= smooth_step(T(p[c.threshold] - y[c.angle_state] * units::kDegPerRad), p[c.width]);
-          break;
+        case Condition::AngleBelow:  // smooth_step of the angle below / above the threshold
         case Condition::AngleAbove:
-          gate *= smooth_step(T(y[c.angle_state] * units::kDegPerRad - p[c.threshold]), p[c.width]);
+          gate *= logistic();
           break;
         case Condition::TimeAfter:  // central command: a step at a fixed time (a breakpoint)
           if (t < value_of(p[c.threshold])) gate = T(0.0);
@@ -239,59 +332,64 @@ void NetworkModel::eval_components(const NetworkComponents& comp, double t, cons
           break;
       }
     }
-    std::vector<T>& target = m.target == Modulation::RestTone ? tone_release : g_extra;
+    std::vector<T>& target = m.target == Modulation::RestTone ? sc.tone_release : sc.g_extra;
     if (m.reference == kNoIndex) target[m.neuron] += p[m.delta] * gate;
     else target[m.neuron] += (p[m.delta] - p[m.reference]) * gate;
   }
-  for (size_t i : comp.neurons) {
+}
+
+// The neurons' and muscles' equations. rate_mn: each rate MN's R(V), computed once for its own
+// equation and its muscle's.
+template <class T>
+void NetworkModel::neuron_equations(const NetworkComponents& comp, const T* y, const T* p, NetworkScratch<T>& sc,
+                                    size_t& k, T* ydot) const {
+  const T* e = sc.ex.data();
+  for (size_t j = 0; j < comp.neurons.size(); ++j) {
+    const size_t i = comp.neurons[j];
     const Neuron& n = neurons_[i];
-    if (n.motoneuron) {
-      MotoneuronParams<T> q;
-      T* f = &q.C_m;
-      for (int k = 0; k < 32; ++k) f[k] = p[n.mn.v[k]];
-      q.g_app += g_extra[i];
-      if (rate_mn_) {
-        rate_mn[i] = motoneuron_rate(y[n.state], p[rate_.V_th], p[rate_.width], p[rate_.dV_ref], p[rate_.exponent]);
-        rate_motoneuron_rhs(q, p[rate_.q_max], &y[n.state], I_syn[i], rate_mn[i], &ydot[n.state]);
-      } else {
-        motoneuron_rhs(q, &y[n.state], I_syn[i], &ydot[n.state]);
-      }
+    if (!n.motoneuron) {
+      NapNeuronParams<T>& q = sc.nap[j];
+      q.g_app += sc.g_extra[i];
+      nap_neuron_rhs(q, y[n.state], y[n.state + 1], sc.I_syn[i], e + k, ydot[n.state], ydot[n.state + 1]);
+      k += kNapExpArgs;
+      continue;
+    }
+    MotoneuronParams<T>& q = sc.mn[j];
+    q.g_app += sc.g_extra[i];
+    if (rate_mn_) {
+      sc.rate_mn[i] = motoneuron_rate(y[n.state], p[rate_.V_th], p[rate_.width], p[rate_.dV_ref], p[rate_.exponent]);
+      rate_motoneuron_rhs(q, p[rate_.q_max], &y[n.state], sc.I_syn[i], sc.rate_mn[i], &ydot[n.state]);
     } else {
-      const NapIdx& x = n.nap;
-      NapNeuronParams<T> q{p[x.C_m], p[x.epsilon], p[x.g_NaP], p[x.E_Na], p[x.V_hm], p[x.gamma_m], p[x.V_hh],
-                           p[x.gamma_h], p[x.V_tau_h], p[x.gamma_tau], p[x.g_L], p[x.E_L], p[x.g_app] + g_extra[i],
-                           p[x.E_app]};
-      nap_neuron_rhs(q, y[n.state], y[n.state + 1], I_syn[i], ydot[n.state], ydot[n.state + 1]);
+      motoneuron_rhs(q, &y[n.state], sc.I_syn[i], e + k, &ydot[n.state]);
+      k += kMotoneuronExpArgs;
     }
   }
-  // Spike-driven activation, eqs. (2.83)/(2.84) in terms of a = (k - k_rest)/(k_active - k_rest);
-  // rate formulation: its average over the spikes, da/dt = gain R(V) (1 - a) - b a.
+  // Spike-driven activation, eqs. (2.83)/(2.84) in terms of a = (k - k_rest)/(k_active - k_rest),
+  // with S = smooth_step(V - V_spike, width); rate formulation: its average over the spikes,
+  // da/dt = gain R(V) (1 - a) - b a.
   for (size_t mi : comp.muscles) {
     const Muscle& m = muscles_[mi];
     const T& a = y[m.activation];
-    const T& V = y[neurons_[m.motoneuron].state];
     if (rate_mn_) {
-      ydot[m.activation] = p[rate_.gain] * rate_mn[m.motoneuron] * (1.0 - a) - p[act_b_] * a;
+      ydot[m.activation] = p[rate_.gain] * sc.rate_mn[m.motoneuron] * (1.0 - a) - p[act_b_] * a;
     } else {
-      T S = smooth_step(T(V - p[act_V_]), p[act_w_]);
+      T S = T(1.0) / (T(1.0) + e[k++]);
       ydot[m.activation] = (p[act_a0_] + p[act_b_]) * S * (1.0 - a) - p[act_b_] * (1.0 - S) * a;
     }
   }
-  for (size_t ji : comp.joints) {
-    const Joint& j = joints_[ji];
-    const Muscle& mi = muscles_[j.muscle_inc];
-    const Muscle& md = muscles_[j.muscle_dec];
-    const T &a_inc = y[mi.activation], &a_dec = y[md.activation];
-    const T &w_inc = tone_release[j.muscle_inc], &w_dec = tone_release[j.muscle_dec];
-    // k_rest + (k_active - k_rest) a, minus the released rest tone (see Muscle).
-    T k_inc = p[mi.k_rest] + (p[mi.k_active] - p[mi.k_rest]) * a_inc -
-              w_inc * p[mi.k_rest] * (1.0 - a_inc) * (1.0 - a_dec);
-    T k_dec = p[md.k_rest] + (p[md.k_active] - p[md.k_rest]) * a_dec -
-              w_dec * p[md.k_rest] * (1.0 - a_dec) * (1.0 - a_inc);
-    ydot[j.angle_state] = y[j.velocity_state] * 1e-3;  // rad/s -> rad/ms
-    ydot[j.velocity_state] =
-        joint_acceleration(j.mech, p, y[j.angle_state], y[j.velocity_state], k_inc, k_dec) * 1e-3;
-  }
+}
+
+template <class T>
+void NetworkModel::joint_equations(const Joint& j, const T* y, const T* p, const NetworkScratch<T>& sc, T* ydot) const {
+  const Muscle& mi = muscles_[j.muscle_inc];
+  const Muscle& md = muscles_[j.muscle_dec];
+  const T &a_inc = y[mi.activation], &a_dec = y[md.activation];
+  const T &w_inc = sc.tone_release[j.muscle_inc], &w_dec = sc.tone_release[j.muscle_dec];
+  // k_rest + (k_active - k_rest) a, minus the released rest tone (see Muscle).
+  T k_inc = p[mi.k_rest] + (p[mi.k_active] - p[mi.k_rest]) * a_inc - w_inc * p[mi.k_rest] * (1.0 - a_inc) * (1.0 - a_dec);
+  T k_dec = p[md.k_rest] + (p[md.k_active] - p[md.k_rest]) * a_dec - w_dec * p[md.k_rest] * (1.0 - a_dec) * (1.0 - a_inc);
+  ydot[j.angle_state] = y[j.velocity_state] * 1e-3;  // rad/s -> rad/ms
+  ydot[j.velocity_state] = joint_acceleration(j.mech, p, y[j.angle_state], y[j.velocity_state], k_inc, k_dec) * 1e-3;
 }
 
 }  // namespace phasmid::model

@@ -4,6 +4,8 @@
 // Units: V in mV, conductances in nS, capacitance in pF, currents in pA, time in ms.
 #include <cmath>
 
+#include "model/exp_batch.hpp"
+
 namespace phasmid::model {
 
 // Eq. (2.1): z_inf(V) = 1 / (1 + exp(gamma_z (V - V_z))), z = m, h, s.
@@ -20,20 +22,44 @@ struct NapNeuronParams {
   P C_m, epsilon, g_NaP, E_Na, V_hm, gamma_m, V_hh, gamma_h, V_tau_h, gamma_tau, g_L, E_L, g_app, E_app;
 };
 
-// Right-hand side of the NaP neuron given the total synaptic current I_syn (pA).
+// Every exponential of the right-hand side depends on states and parameters only, never on
+// another exponential. So a network evaluation runs in phases: first each component writes
+// the arguments x of its exponentials (*_exp_args, a fixed count per component), then all of
+// them are taken in one batch, e = exp(x) (model/exp_batch.hpp, vectorised for double), then
+// the equations read e. The one-call forms below do all three for a single component.
+
+// NaP neuron: m_inf, h_inf (2.1) and the two halves of cosh in tau_h.
+constexpr int kNapExpArgs = 4;
+template <class T, class P>
+void nap_exp_args(const NapNeuronParams<P>& q, const T& V, T* a) {
+  a[0] = q.gamma_m * (V - q.V_hm);
+  a[1] = q.gamma_h * (V - q.V_hh);
+  a[2] = q.gamma_tau * (V - q.V_tau_h);
+  a[3] = -a[2];
+}
+
+// Right-hand side of the NaP neuron given the total synaptic current I_syn (pA) and the
+// exponentials e of nap_exp_args.
 // The inactivation follows dh/dt = eps (h_inf - h) cosh(gamma_tau (V - V_tau_h)) (docs/model.md "Neurons":
 // tau_h(V) = 1 / (eps cosh(...)), the form of Daun et al. 2009 that Table A.1's
 // "time constant coefficient" eps belongs to).
 template <class T, class P>
-void nap_neuron_rhs(const NapNeuronParams<P>& q, const T& V, const T& h, const T& I_syn, T& dV, T& dh) {
-  using std::cosh;
-  T m_inf = boltzmann(V, q.V_hm, q.gamma_m);
-  T h_inf = boltzmann(V, q.V_hh, q.gamma_h);
+void nap_neuron_rhs(const NapNeuronParams<P>& q, const T& V, const T& h, const T& I_syn, const T* e, T& dV, T& dh) {
+  T m_inf = T(1.0) / (T(1.0) + e[0]);  // (2.1)
+  T h_inf = T(1.0) / (T(1.0) + e[1]);
   T I_NaP = q.g_NaP * m_inf * h * (V - q.E_Na);
   T I_L = q.g_L * (V - q.E_L);
   T I_app = q.g_app * (V - q.E_app);
   dV = -(I_NaP + I_L + I_syn + I_app) / q.C_m;
-  dh = q.epsilon * (h_inf - h) * cosh(q.gamma_tau * (V - q.V_tau_h));
+  dh = q.epsilon * (h_inf - h) * (0.5 * (e[2] + e[3]));
+}
+
+template <class T, class P>
+void nap_neuron_rhs(const NapNeuronParams<P>& q, const T& V, const T& h, const T& I_syn, T& dV, T& dh) {
+  T a[kNapExpArgs], e[kNapExpArgs];
+  nap_exp_args(q, V, a);
+  exp_each(a, e, kNapExpArgs);
+  nap_neuron_rhs(q, V, h, I_syn, e, dV, dh);
 }
 
 // Hodgkin-Huxley motoneuron with Traub Na/K currents and adaptation current q (eqs. 2.2-2.18,
@@ -44,38 +70,63 @@ struct MotoneuronParams {
       Na_bh3, g_K, E_K, K_am1, K_am2, K_am3, K_bm1, K_bm2, K_bm3, g_q, E_q, V_hq, s_q, r_q, g_L, E_L, g_app, E_app;
 };
 
-// x / (exp(c x) - 1) with its removable singularity at x = 0 handled (limit 1/c).
+// x / (e - 1) with e = exp(c x), its removable singularity at x = 0 handled (limit 1/c).
+template <class T, class P>
+T exprel_ratio(const T& x, const P& c, const T& e) {
+  using std::abs;
+  if (abs(x) < 1e-7) return T(1.0) / c - x / 2.0;
+  return x / (e - 1.0);
+}
+
 template <class T, class P>
 T exprel_ratio(const T& x, const P& c) {
   using std::exp;
-  using std::abs;
-  if (abs(x) < 1e-7) return T(1.0) / c - x / 2.0;
-  return x / (exp(c * x) - 1.0);
+  return exprel_ratio(x, c, T(exp(c * x)));
 }
 
-// State order: V, m_Na, h_Na, m_K, m_q.
+// Motoneuron: the six Traub rates (2.10)-(2.15) and m_q,inf (2.17).
+constexpr int kMotoneuronExpArgs = 7;
 template <class T, class P>
-void motoneuron_rhs(const MotoneuronParams<P>& q, const T* s, const T& I_syn, T* ds) {
-  using std::exp;
+void motoneuron_exp_args(const MotoneuronParams<P>& q, const T& V, T* a) {
+  a[0] = q.Na_am3 * (q.Na_am2 - V);
+  a[1] = q.Na_bm3 * (q.Na_bm2 - V);
+  a[2] = q.Na_ah3 * (q.Na_ah2 - V);
+  a[3] = q.Na_bh3 * (q.Na_bh2 - V);
+  a[4] = q.K_am3 * (q.K_am2 - V);
+  a[5] = q.K_bm3 * (q.K_bm2 - V);
+  a[6] = q.s_q * (V - q.V_hq);
+}
+
+// State order: V, m_Na, h_Na, m_K, m_q; e from motoneuron_exp_args.
+template <class T, class P>
+void motoneuron_rhs(const MotoneuronParams<P>& q, const T* s, const T& I_syn, const T* e, T* ds) {
   const T& V = s[0];
   const T &mNa = s[1], &hNa = s[2], &mK = s[3], &mq = s[4];
-  T a_mNa = q.Na_am1 * exprel_ratio(T(q.Na_am2 - V), q.Na_am3);              // (2.10)
-  T b_mNa = q.Na_bm1 * exprel_ratio(T(q.Na_bm2 - V), q.Na_bm3);              // (2.11)
-  T a_hNa = q.Na_ah1 * exp(q.Na_ah3 * (q.Na_ah2 - V));                       // (2.12)
-  T b_hNa = q.Na_bh1 / (exp(q.Na_bh3 * (q.Na_bh2 - V)) + 1.0);               // (2.13)
-  T a_mK = q.K_am1 * exprel_ratio(T(q.K_am2 - V), q.K_am3);                  // (2.14), corrected
-  T b_mK = q.K_bm1 * exp(q.K_bm3 * (q.K_bm2 - V));                           // (2.15)
-  T mq_inf = boltzmann(V, q.V_hq, q.s_q);                                    // (2.17)
-  T I_Na = q.g_Na * mNa * mNa * hNa * (V - q.E_Na);                          // (2.3)
-  T I_K = q.g_K * mK * (V - q.E_K);                                          // (2.4)
-  T I_q = q.g_q * mq * (V - q.E_q);                                          // (2.5)
-  T I_L = q.g_L * (V - q.E_L);                                               // (2.6)
-  T I_app = q.g_app * (V - q.E_app);                                         // (2.8)
-  ds[0] = -(I_Na + I_K + I_q + I_L + I_syn + I_app) / q.C_m;                 // (2.2)
-  ds[1] = a_mNa * (1.0 - mNa) - b_mNa * mNa;                                 // (2.9)
+  T a_mNa = q.Na_am1 * exprel_ratio(T(q.Na_am2 - V), q.Na_am3, e[0]);      // (2.10)
+  T b_mNa = q.Na_bm1 * exprel_ratio(T(q.Na_bm2 - V), q.Na_bm3, e[1]);      // (2.11)
+  T a_hNa = q.Na_ah1 * e[2];                                               // (2.12)
+  T b_hNa = q.Na_bh1 / (e[3] + 1.0);                                       // (2.13)
+  T a_mK = q.K_am1 * exprel_ratio(T(q.K_am2 - V), q.K_am3, e[4]);          // (2.14), corrected
+  T b_mK = q.K_bm1 * e[5];                                                 // (2.15)
+  T mq_inf = T(1.0) / (T(1.0) + e[6]);                                     // (2.17)
+  T I_Na = q.g_Na * mNa * mNa * hNa * (V - q.E_Na);                        // (2.3)
+  T I_K = q.g_K * mK * (V - q.E_K);                                        // (2.4)
+  T I_q = q.g_q * mq * (V - q.E_q);                                        // (2.5)
+  T I_L = q.g_L * (V - q.E_L);                                             // (2.6)
+  T I_app = q.g_app * (V - q.E_app);                                       // (2.8)
+  ds[0] = -(I_Na + I_K + I_q + I_L + I_syn + I_app) / q.C_m;               // (2.2)
+  ds[1] = a_mNa * (1.0 - mNa) - b_mNa * mNa;                               // (2.9)
   ds[2] = a_hNa * (1.0 - hNa) - b_hNa * hNa;
   ds[3] = a_mK * (1.0 - mK) - b_mK * mK;
-  ds[4] = q.r_q * (mq_inf - mq);                                             // (2.16)
+  ds[4] = q.r_q * (mq_inf - mq);                                           // (2.16)
+}
+
+template <class T, class P>
+void motoneuron_rhs(const MotoneuronParams<P>& q, const T* s, const T& I_syn, T* ds) {
+  T a[kMotoneuronExpArgs], e[kMotoneuronExpArgs];
+  motoneuron_exp_args(q, s[0], a);
+  exp_each(a, e, kMotoneuronExpArgs);
+  motoneuron_rhs(q, s, I_syn, e, ds);
 }
 
 // Rate (non-spiking) motoneuron, phasmid's reduced formulation (docs/model.md, "Rate
@@ -117,12 +168,6 @@ void rate_motoneuron_rhs(const MotoneuronParams<P>& q, const P& q_max, const T* 
   T I_app = q.g_app * (V - q.E_app);
   ds[0] = -(I_q + I_L + I_syn + I_app) / q.C_m;
   ds[1] = q.r_q * (q_max * R - mq);
-}
-
-// Synaptic current (2.7) into a cell at V from a presynaptic cell at V_pre.
-template <class T, class P>
-T synaptic_current(const P& g_syn, const P& V_hs, const P& gamma_s, const P& E_syn, const T& V_pre, const T& V) {
-  return g_syn * boltzmann(V_pre, V_hs, gamma_s) * (V - E_syn);
 }
 
 }  // namespace phasmid::model
