@@ -185,3 +185,24 @@ TEST_F(SerialKernels, FusedAndArrayOperationsMatchSundials) {
 }
 
 }  // namespace
+
+// Linear combinations of 1 vector, of the one-pass kernel's largest count (16) and of more (20,
+// the pass-per-vector loop), into a separate vector and into X_0 itself.
+TEST_F(SerialKernels, LinearCombinationOfAnyCountMatchesSundials) {
+  for (int k : {1, 2, 16, 20}) {
+    std::vector<N_Vector> X0, X1;
+    std::vector<double> c;
+    for (int i = 0; i < k; ++i) {
+      auto [a, b] = pair();
+      X0.push_back(a), X1.push_back(b);
+      c.push_back(dist_(rng_));
+    }
+    auto [z0, z1] = pair();
+    ASSERT_EQ(N_VLinearCombination(k, c.data(), X0.data(), z0), 0);
+    ASSERT_EQ(N_VLinearCombination(k, c.data(), X1.data(), z1), 0);
+    expect_equal(z0, z1);
+    ASSERT_EQ(N_VLinearCombination(k, c.data(), X0.data(), X0[0]), 0);
+    ASSERT_EQ(N_VLinearCombination(k, c.data(), X1.data(), X1[0]), 0);
+    expect_equal(X0[0], X1[0]);
+  }
+}
