@@ -6,19 +6,19 @@
 # each row: a second thread only helps while a second core is free. A variant "... @W" runs in
 # windows of W ms instead of WINDOW_MS.
 #
-#   bash bench/bench_threads.sh [WINDOW_MS=0.25]
+#   bash bench/bench_threads.sh [WINDOW_MS=1]
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BENCH=${BENCH:-$ROOT/build/bench/bench_walking}
-WINDOW=${1:-0.25}
+WINDOW=${1:-1}
 export BENCH_REPEATS=${BENCH_REPEATS:-3}
 [ -x "$BENCH" ] || { echo "bench_threads: $BENCH not found (cmake --build build --target bench_walking)" >&2; exit 1; }
 printf "# bench_threads: 9000 ms of the three legs, best of %s, window %s ms, %s\n" "$BENCH_REPEATS" "$WINDOW" "$(date -u +%FT%TZ)"
 printf "%-8s %-30s %7s %8s %8s %8s %9s %9s  %s\n" mn variant threads wall_s cpu_s steps wall/seq cpu/seq load
 for mn in spiking rate; do
   if [ $mn = spiking ]; then integ=erk_dp5 tol=1e-6; else integ=cvodes_bdf tol=1e-7; fi
-  variants=("default" "default @1")
-  [ $mn = rate ] && variants+=("1=1e-6,mV=1e-5,rad/ms=1e-6" "1=1e-6,mV=1e-5,rad/ms=1e-6 @1")
+  variants=("default" "default @0.25")
+  [ $mn = rate ] && variants+=("1=1e-6,mV=1e-5,rad/ms=1e-6" "1=1e-6,mV=1e-5,rad/ms=1e-6 @0.25")
   for v in "${variants[@]}"; do
     seq_wall="" seq_cpu=""
     w=$WINDOW; u=$v

@@ -396,7 +396,7 @@ Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, cons
   const auto t_start = std::chrono::steady_clock::now();
   const ContinuationOptions o = checked(model, opt);
   const size_t n = model.num_states();
-  Context c{model, p, path_of(model, o), 0.0, n, o, Vec::Ones(n + 2), o.shooting};
+  Context c{model, p, path_of(model, o), 0.0, n, o, Vec::Ones(n + 2), o.shooting, 0, 0, false, 0.0, NewtonReport{}};
   c.path.apply(c.p, o.start);
   NewtonReport rep;
   const Cycle first = find_cycle(model, c.p, o.shooting, rep);

@@ -77,7 +77,7 @@ struct SolverOptions {
   // Absolute tolerance by the unit of a state (StateInfo::unit: "mV", "1", "rad", ...) in place
   // of atol; states of other units keep atol. Runs without sensitivities only.
   std::vector<std::pair<std::string, double>> atol_by_unit;
-  double window_ms = 0.25;
+  double window_ms = 1.0;  // 0.25-1 ms are as accurate on the three legs; 4 ms is not (docs/benchmarks.md)
   int window_order = 3;
   bool progress = false;             // progress line on a terminal (stderr)
   // Set: output samples go to the sink as they are reached instead of into SolveResult
