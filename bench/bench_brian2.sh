@@ -6,6 +6,9 @@
 #   bash bench/bench_brian2.sh [REPEATS [MODEL]]   (default 3, single_joint_fti; or middle_leg_forward)
 #   PHASMID=path overrides build/phasmid; PHASMID_TOLS, RK4_DTS, GSL_ERRORS, GSL_DT the ladders;
 #   PHASMID_METHODS the phasmid integrators ([simulation] integrator; default "cvodes_bdf erk_dp5").
+#   NEURONS_TOLS: rows with partitioned = "neurons" (Dormand-Prince on the motoneurons, muscles
+#   and mechanics at each of these tolerances, CVODES BDF on the CPG and interneurons at
+#   stiff_part_tol = NEURONS_STIFF_TOL; docs/solver.md "Integrators"); default "1e-4 1e-5", 1e-7.
 #
 # Every row is checked against a tight-tolerance phasmid reference (rtol = atol = 1e-12):
 # the period and the mean extremal angles of every joint over [discard_ms, t_end_ms] =
@@ -37,6 +40,8 @@ SHIPPED_METHOD=$(sed -n 's/^integrator *= *"\(.*\)"/\1/p' "$CONFIG")
 SHIPPED_METHOD=${SHIPPED_METHOD:-cvodes_bdf}
 PHASMID_METHODS=${PHASMID_METHODS:-"cvodes_bdf erk_dp5"}
 PHASMID_TOLS=${PHASMID_TOLS:-"1e-4 1e-5 1e-6 1e-7 1e-8 1e-9 1e-10"}
+NEURONS_TOLS=${NEURONS_TOLS-"1e-4 1e-5"}
+NEURONS_STIFF_TOL=${NEURONS_STIFF_TOL:-1e-7}
 RK4_DTS=${RK4_DTS:-"0.05 0.025 0.01 0.005"}
 GSL_ERRORS=${GSL_ERRORS:-"1e-2 1e-3 1e-4 1e-5 1e-6"}
 GSL_DT=${GSL_DT:-1}  # Brian2 clock dt of the GSL runs, ms (the GSL driver is restarted every dt)
@@ -57,13 +62,13 @@ process_cpu() {
   echo "$best" | tr ' ' '\n' | grep . | sort -g | head -1
 }
 
-# One phasmid row: simulate REPEATS times with integrator METHOD at rtol = atol = TOL, JSON line
-# with times and features.
+# One phasmid row: simulate REPEATS times with integrator METHOD at rtol = atol = TOL (and the
+# [simulation] lines EXTRA, \n-separated), JSON line with times and features.
 phasmid_row() {
-  local label=$1 tol=$2 method=${3:-cvodes_bdf} h5=$TMP/phasmid_$2.h5 cfg=$TMP/phasmid_$2.toml
+  local label=$1 tol=$2 method=${3:-cvodes_bdf} extra=${4:-} h5=$TMP/phasmid_$2.h5 cfg=$TMP/phasmid_$2.toml
   # The config's [simulation] tolerances and integrator replaced (or added: the leg config sets none).
-  grep -Ev "^([ra]tol|integrator) *=" "$CONFIG" |
-    sed -e "s/^\[simulation\]/[simulation]\nrtol = $tol\natol = $tol\nintegrator = \"$method\"/" > "$cfg"
+  grep -Ev "^([ra]tol|integrator|partitioned|stiff_part_tol) *=" "$CONFIG" |
+    sed -e "s/^\[simulation\]/[simulation]\nrtol = $tol\natol = $tol\nintegrator = \"$method\"${extra:+\\n$extra}/" > "$cfg"
   local proc
   proc=$(process_cpu "$cfg" "$h5")
   "$PHASMID" features "$h5" --json > "$TMP/features.json"
@@ -111,6 +116,11 @@ for method in $PHASMID_METHODS; do
     [ "$tol" = "$SHIPPED_TOL" ] && [ "$method" = "$SHIPPED_METHOD" ] && label+=" (shipped)"
     phasmid_row "$label" "$tol" "$method"
   done
+done
+for tol in $NEURONS_TOLS; do
+  echo "bench_brian2: phasmid erk_dp5 partitioned = neurons, rtol = atol = $tol ..." >&2
+  phasmid_row "phasmid erk_dp5 + cvodes_bdf $NEURONS_STIFF_TOL (partitioned = \"neurons\"), rtol = atol = $tol" "$tol" erk_dp5 \
+    "partitioned = \"neurons\"\\nstiff_part_tol = $NEURONS_STIFF_TOL"
 done
 for dt in $RK4_DTS; do
   echo "bench_brian2: Brian2 RK4 dt = $dt ms ..." >&2

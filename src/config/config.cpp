@@ -77,7 +77,8 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
     throw Error(where(cfg, *st) + ": [simulation] does not apply to model type " + scenario->kind() +
                 " (its own parameters set the run; docs/config.md)");
   check_keys(cfg, *st, "simulation", {"t_end_ms", "output_dt_ms", "discard_ms", "rtol", "atol", "linear_solver", "max_step_ms",
-                                              "partitioned", "integrator", "threads", "thread_window_ms", "atol_by_unit"});
+                                              "partitioned", "integrator", "threads", "thread_window_ms", "atol_by_unit",
+                                              "stiff_part_tol"});
   auto get = [&](const char* key, double& out, double lo) {
     if (const toml::node* n = st->get(key)) {
       out = number(cfg, *n, key);
@@ -90,6 +91,7 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
   check_run_times(s.t_end_ms, s.output_dt_ms, s.discard_ms, where(cfg, *st) + ": [simulation]");
   get("rtol", s.solver.rtol, 0);
   get("atol", s.solver.atol, 0);
+  get("stiff_part_tol", s.solver.stiff_part_tol, 0);
   if (s.solver.rtol >= 1) throw Error(where(cfg, *st->get("rtol")) + ": 'rtol' must be < 1");
   get("max_step_ms", s.solver.max_step_ms, 0);
   if (const toml::node* n = st->get("linear_solver")) {
@@ -126,8 +128,10 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
       s.solver.partitioning = *n->value<bool>() ? solver::Partitioning::On : solver::Partitioning::Off;
     } else if (n->value<std::string>().value_or("") == "auto") {
       s.solver.partitioning = solver::Partitioning::Auto;
+    } else if (n->value<std::string>().value_or("") == "neurons") {
+      s.solver.partitioning = solver::Partitioning::Neurons;
     } else {
-      throw Error(where(cfg, *n) + ": 'partitioned' must be true, false or \"auto\"");
+      throw Error(where(cfg, *n) + ": 'partitioned' must be true, false, \"auto\" or \"neurons\"");
     }
   }
   return s;

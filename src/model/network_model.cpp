@@ -126,12 +126,16 @@ size_t NetworkModel::modulation_target_state(const Modulation& m) const {
   return m.target == Modulation::RestTone ? muscles_[m.neuron].activation : neurons_[m.neuron].state;
 }
 
-ModelPartition NetworkModel::partition() const {
+ModelPartition NetworkModel::partition(PartitionGrain grain) const {
   const size_t n = num_states();
+  const bool split = grain == PartitionGrain::Neurons && !rate_mn_;
+  // A coupling, not a join: a synapse onto a spiking motoneuron from a neuron of the network.
+  auto couples = [&](const Synapse& s) { return split && neurons_[s.post].motoneuron && !neurons_[s.pre].motoneuron; };
   DisjointSets sets(n);
   for (const Neuron& nr : neurons_)
     for (size_t k = 1; k < neuron_state_count(nr); ++k) sets.join(nr.state, nr.state + k);
   for (const Synapse& s : synapses_) {
+    if (couples(s)) continue;
     sets.join(neurons_[s.pre].state, neurons_[s.post].state);
     if (s.gate.neuron != kNoIndex) sets.join(neurons_[s.gate.neuron].state, neurons_[s.post].state);
   }
@@ -155,19 +159,33 @@ ModelPartition NetworkModel::partition() const {
   }
   P.inputs.assign(P.size(), {});
   P.names.assign(P.size(), "");
-  for (const Modulation& m : modulations_) {
-    const size_t k = part_of[modulation_target_state(m)];
+  auto read = [&](size_t k, size_t state) {
+    if (part_of[state] != k && std::find(P.inputs[k].begin(), P.inputs[k].end(), state) == P.inputs[k].end())
+      P.inputs[k].push_back(state);
+  };
+  for (const Modulation& m : modulations_)
     for (const Condition& c : m.conditions)
-      if ((c.kind == Condition::AngleBelow || c.kind == Condition::AngleAbove) && part_of[c.angle_state] != k &&
-          std::find(P.inputs[k].begin(), P.inputs[k].end(), c.angle_state) == P.inputs[k].end())
-        P.inputs[k].push_back(c.angle_state);
-  }
+      if (c.kind == Condition::AngleBelow || c.kind == Condition::AngleAbove)
+        read(part_of[modulation_target_state(m)], c.angle_state);
+  for (const Synapse& s : synapses_)
+    if (couples(s)) {
+      read(part_of[neurons_[s.post].state], neurons_[s.pre].state);
+      if (s.gate.neuron != kNoIndex) read(part_of[neurons_[s.post].state], neurons_[s.gate.neuron].state);
+    }
   for (const Joint& j : joints_) {
     std::string& name = P.names[part_of[j.angle_state]];
     name += (name.empty() ? "" : "+") + j.mech.prefix;
   }
-  for (size_t k = 0; k < P.size(); ++k)
-    if (P.names[k].empty()) P.names[k] = states_[P.states[k].front()].name;
+  // A part without a joint (named after its first state) is a network of neurons; without a
+  // spiking motoneuron it is stiff and smooth.
+  if (split) P.stiff.assign(P.size(), 0);
+  for (size_t k = 0; k < P.size(); ++k) {
+    if (!P.names[k].empty()) continue;
+    P.names[k] = states_[P.states[k].front()].name;
+    if (split) P.stiff[k] = 1;
+  }
+  for (const Neuron& nr : neurons_)
+    if (split && nr.motoneuron) P.stiff[part_of[nr.state]] = 0;
   return P;
 }
 

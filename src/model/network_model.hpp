@@ -169,8 +169,11 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   std::vector<double> breakpoints(const std::vector<double>& p, double t_end) const override;
   // Parts = the joints' networks: states joined by synapses, presynaptic gates, motoneuron ->
   // muscle -> joint; the sensory and intersegmental modulations (sigmoids of joint angles)
-  // are the couplings between parts.
-  ModelPartition partition() const override;
+  // are the couplings between parts. Neurons grain, spiking motoneurons: the synapses from
+  // other neurons onto motoneurons couple too (the motoneurons read the presynaptic
+  // potentials), which splits each joint's network into its CPG and interneurons (stiff, no
+  // spikes) and its motoneurons, muscles and mechanics.
+  ModelPartition partition(PartitionGrain grain) const override;
   // Rate motoneurons only: the joints' own step sizes keep feature accuracy and save time. With
   // spiking ones they lose accuracy in spike-driven features at the same rtol, and the tighter
   // rtol that restores it costs the time saved (figures: docs/benchmarks.md "Partitioned

@@ -24,13 +24,22 @@ using JetK = ceres::Jet<double, kJacobianChunk>;
 using Jet4 = ceres::Jet<double, 4>;
 
 // Partitioned integration (solver/partitioned_simulator.hpp): the states split into parts
-// that read each other only through slowly varying states (joint angles), so that each part
-// can be integrated on its own step size with the others' angles interpolated.
+// that read each other only through states they interpolate (joint angles; with the Neurons
+// grain also the potentials of presynaptic neurons), so that each part can be integrated on
+// its own step size.
+// Joints: one part per joint network. Neurons: also the spiking cells, whose steps are short,
+// apart from the network that drives them, whose equations are stiff but smooth.
+enum class PartitionGrain { Joints, Neurons };
+
 struct ModelPartition {
   std::vector<std::vector<size_t>> states;  // per part: its states (global indices, ascending)
   std::vector<std::vector<size_t>> inputs;  // per part: states of other parts its equations read
   std::vector<std::string> names;           // per part: a label for messages ("middle.fti")
+  // Per part (or empty: none): stiff and smooth, without spikes. A run with an explicit
+  // integrator integrates these parts with CVODES BDF (SolverOptions::stiff_part_tol).
+  std::vector<char> stiff;
   size_t size() const { return states.size(); }
+  bool is_stiff(size_t k) const { return k < stiff.size() && stiff[k]; }
 };
 
 // The equations of one part: reads a full-size state vector (only the part's own states and
@@ -134,9 +143,13 @@ class OdeModel {
   // Bandwidth (lower, upper) of the Jacobian when states are ordered as declared; -1 if dense.
   virtual int jacobian_half_bandwidth() const { return -1; }
 
-  // The model's parts for partitioned integration (empty: the model cannot be partitioned)
-  // and the equations of part k of that partition.
-  virtual ModelPartition partition() const { return {}; }
+  // The model's parts for partitioned integration at a grain (empty: the model cannot be
+  // partitioned; a model without a finer split gives its Joints partition for Neurons) and the
+  // equations of part k of that partition.
+  virtual ModelPartition partition(PartitionGrain grain) const {
+    (void)grain;
+    return {};
+  }
   // Whether partitioned integration is the default for plain runs (it pays at equal accuracy).
   virtual bool partition_by_default() const { return false; }
   virtual std::unique_ptr<OdeModelPart> make_part(const ModelPartition& partition, size_t k) const {

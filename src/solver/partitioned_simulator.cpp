@@ -253,9 +253,21 @@ void step_roots(PartSolver& ps, int flag, double tret, size_t n, std::vector<int
   }
 }
 
+// A part's integrator settings: a stiff part (ModelPartition::stiff) of an explicit run is
+// CVODES BDF at stiff_part_tol, where an explicit method's steps would be bounded by stability.
+SolverOptions options_of_part(const SolverOptions& options, bool stiff) {
+  if (!stiff || !is_explicit_rk(options.integrator)) return options;
+  SolverOptions o = options;
+  o.integrator = IntegratorKind::Bdf;
+  o.rtol = o.atol = options.stiff_part_tol;
+  o.atol_by_unit.clear();
+  return o;
+}
+
 // Each part's integrator from y0, integrating towards the first stop.
-void start_sessions(Run& run, const model::OdeModel& model, const std::vector<std::unique_ptr<SundialsContext>>& contexts,
-                    const SolverOptions& options, const std::vector<double>& y0, double first_stop) {
+void start_sessions(Run& run, const model::ModelPartition& partition, const model::OdeModel& model,
+                    const std::vector<std::unique_ptr<SundialsContext>>& contexts, const SolverOptions& options,
+                    const std::vector<double>& y0, double first_stop) {
   for (size_t k = 0; k < run.parts.size(); ++k) {
     PartSolver& ps = *run.parts[k];
     SUNContext ctx = contexts[std::min(k, contexts.size() - 1)]->get();
@@ -264,15 +276,16 @@ void start_sessions(Run& run, const model::OdeModel& model, const std::vector<st
     // Before its first step a part's polynomial is its initial value.
     ps.coef.assign(static_cast<size_t>(kMaxOrder + 1) * ps.exports.size(), 0.0);
     for (size_t e = 0; e < ps.exports.size(); ++e) ps.coef[e] = y0[ps.states[ps.exports[e]]];
-    if (is_explicit_rk(options.integrator)) {
-      ps.session = std::make_unique<ErkSession>(ctx, options, own.data(), own.size(), part_rhs, &ps);
+    const SolverOptions part_options = options_of_part(options, partition.is_stiff(k));
+    if (is_explicit_rk(part_options.integrator)) {
+      ps.session = std::make_unique<ErkSession>(ctx, part_options, own.data(), own.size(), part_rhs, &ps);
     } else {
-      auto cv = std::make_unique<CvodesSession>(ctx, options, own.data(), own.size(), part_rhs, &ps);
+      auto cv = std::make_unique<CvodesSession>(ctx, part_options, own.data(), own.size(), part_rhs, &ps);
       // Parts are small (a joint: 20-26 states): dense LU with the compiled kernels.
       cv->set_linear_solver(LinearSystem::Dense, 0, 0, options.jacobian == JacobianKind::AutoDiff ? part_jac : nullptr);
       ps.session = std::move(cv);
     }
-    if (!options.atol_by_unit.empty()) ps.session->set_state_atol(state_atol(model, options, ps.states));
+    if (!part_options.atol_by_unit.empty()) ps.session->set_state_atol(state_atol(model, part_options, ps.states));
     std::vector<int> dirs;
     for (size_t r : ps.roots) dirs.push_back((*run.roots)[r].direction);
     ps.session->init_roots(dirs, part_roots);
@@ -683,7 +696,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
   run.roots = &roots;
   for (double v : schedule.p()) run.pK.emplace_back(v);
   build_parts(run, model, P, roots);
-  start_sessions(run, model, contexts, options, y0, schedule.next_stop());
+  start_sessions(run, P, model, contexts, options, y0, schedule.next_stop());
 
   SolveResult res;
   Partitioned driver(run, model, options, output_times, caller_roots.size(), y0, res);

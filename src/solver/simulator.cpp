@@ -498,10 +498,11 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const OutputTimes
   if (output_times.empty() || output_times.front() < 0) throw Error("output times must start at t >= 0");
   const size_t ns = sens_params.size();
   if (ns && options_.output_sink) throw Error("internal: an output sink takes no sensitivities");
-  const bool partition = options_.partitioning == Partitioning::On ||
+  const bool partition = options_.partitioning == Partitioning::On || options_.partitioning == Partitioning::Neurons ||
                          (options_.partitioning == Partitioning::Auto && model_.partition_by_default());
   if (partition && ns == 0) {
-    const model::ModelPartition parts = model_.partition();
+    const model::ModelPartition parts = model_.partition(
+        options_.partitioning == Partitioning::Neurons ? model::PartitionGrain::Neurons : model::PartitionGrain::Joints);
     if (parts.size() > 1) return run_partitioned(model_, parts, options_, p_given, output_times, roots);
   }
   CommandSchedule schedule(model_, p_given, output_times.back(), sens_params);

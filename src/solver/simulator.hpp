@@ -32,7 +32,9 @@ enum class SensitivityRhs { Batched, PerParameter };
 enum class IntegratorKind { Bdf, Adams, ErkBs3, ErkDp5, ErkVerner65, ErkFehlberg78 };
 inline bool is_explicit_rk(IntegratorKind k) { return k != IntegratorKind::Bdf && k != IntegratorKind::Adams; }
 enum class VectorKernels { Phasmid, Sundials };
-enum class Partitioning { Auto, On, Off };
+// On: one integrator per joint network (model::PartitionGrain::Joints). Neurons: also each
+// network's spiking cells apart from the stiff network that drives them (PartitionGrain::Neurons).
+enum class Partitioning { Auto, On, Off, Neurons };
 
 struct SolverOptions {
   double rtol = 1e-8;
@@ -68,6 +70,11 @@ struct SolverOptions {
   // says it pays at equal accuracy (OdeModel::partition_by_default: the rate-MN walking models;
   // docs/benchmarks.md "Partitioned integration").
   Partitioning partitioning = Partitioning::Auto;
+  // Partitioning::Neurons with an explicit integrator: the parts the model marks stiff
+  // (ModelPartition::stiff) run CVODES BDF at rtol = atol = stiff_part_tol; the rest run the
+  // explicit method at rtol, atol. 1e-7: the study's loosest that keeps the single joint's
+  // period within 0.002 ms of the reference (docs/benchmarks.md "Spiking cells apart").
+  double stiff_part_tol = 1e-7;
   // Partitioned runs only. 1: the sequential scheduler (the part furthest behind steps next).
   // >= 2: the parts step concurrently on that many threads in windows of window_ms, each
   // reading the others' angles from their polynomials at the window's start, extrapolated at

@@ -40,7 +40,7 @@ printf '[model]\ntype = "three_legs"\n[[triggers]]\nset = "gait.switch_ms"\neven
 expect_error "no sensitivity to a triggered command time" "no sensitivity to gait.switch_ms: it is set by the \[\[triggers\]\] event hind.liftoff" \
   "$PHASMID" sensitivity "$tmp/trigsens.toml" -o "$tmp/f.h5"
 printf '[model]\ntype = "three_legs"\n[simulation]\npartitioned = "yes"\n' >"$tmp/part.toml"
-expect_error "partitioned must be a boolean, names file:line" "part.toml:4: 'partitioned' must be true, false or \"auto\"" \
+expect_error "partitioned must be a boolean, names file:line" "part.toml:4: 'partitioned' must be true, false, \"auto\" or \"neurons\"" \
   "$PHASMID" simulate "$tmp/part.toml" -o "$tmp/g.h5" -q
 expect_error "ratios bad angle" "not a number" "$PHASMID" ratios --joint fti --angles 45,x
 expect_error "solver failure is reported" "CVODES failed" \

@@ -23,8 +23,10 @@ namespace {
 
 // Every part's equations against the whole right-hand side at states along a trajectory
 // (so that sigmoids are in their switching range) and randomly perturbed ones.
-void expect_parts_reproduce_rhs(const model::OdeModel& m, double t_end) {
-  const model::ModelPartition P = m.partition();
+// Joints: inputs are joint angles only. Neurons: also neurons' potentials.
+void expect_parts_reproduce_rhs(const model::OdeModel& m, double t_end,
+                                model::PartitionGrain grain = model::PartitionGrain::Joints) {
+  const model::ModelPartition P = m.partition(grain);
   ASSERT_GE(P.size(), 2u);
   const size_t n = m.num_states();
   std::vector<int> owner(n, -1);
@@ -34,12 +36,16 @@ void expect_parts_reproduce_rhs(const model::OdeModel& m, double t_end) {
       owner[i] = static_cast<int>(k);
     }
   for (size_t i = 0; i < n; ++i) EXPECT_GE(owner[i], 0) << m.states()[i].name << " in no part";
-  // Inputs are joint angles of other parts (the slow couplings the scheme interpolates).
+  // Inputs are joint angles of other parts (the slow couplings the scheme interpolates), with
+  // the Neurons grain also presynaptic potentials.
+  const auto& neurons = m.structure().neurons;
   for (size_t k = 0; k < P.size(); ++k)
     for (size_t i : P.inputs[k]) {
       EXPECT_NE(owner[i], static_cast<int>(k));
-      EXPECT_TRUE(std::any_of(m.angles().begin(), m.angles().end(), [&](const auto& a) { return a.angle_state == i; }))
-          << P.names[k] << " reads " << m.states()[i].name << ", which is not a joint angle";
+      const bool angle = std::any_of(m.angles().begin(), m.angles().end(), [&](const auto& a) { return a.angle_state == i; });
+      const bool potential = grain == model::PartitionGrain::Neurons &&
+                             std::any_of(neurons.begin(), neurons.end(), [&](const auto& nr) { return nr.v_state == i; });
+      EXPECT_TRUE(angle || potential) << P.names[k] << " reads " << m.states()[i].name;
     }
 
   const auto p = m.parameters().values();
@@ -62,7 +68,11 @@ void expect_parts_reproduce_rhs(const model::OdeModel& m, double t_end) {
       for (size_t i : P.states[k]) y_part[i] = y[i];
       for (size_t i : P.inputs[k]) y_part[i] = y[i];
       eq->rhs(grid[k_out], y_part.data(), p.data(), f_part.data());
-      for (size_t i : P.states[k]) ASSERT_EQ(f_part[i], f_whole[i]) << P.names[k] << ": " << m.states()[i].name;
+      // Joints: bit for bit. Neurons: a part's batch of exponentials (model/exp_batch.hpp) puts
+      // an argument in another lane or the scalar tail, which round differently in the last bit.
+      const double ulps = grain == model::PartitionGrain::Joints ? 0.0 : 1e-13;
+      for (size_t i : P.states[k])
+        ASSERT_NEAR(f_part[i], f_whole[i], ulps * std::abs(f_whole[i])) << P.names[k] << ": " << m.states()[i].name;
     }
   }
 }
@@ -140,11 +150,42 @@ TEST(PartitionedSimulator, PartsReproduceTheWholeRightHandSide) {
   expect_parts_reproduce_rhs(*model::build_leg_model("middle", l), 1500.0);
 }
 
+// The Neurons grain: each joint's CPG and interneurons (stiff, no spikes) apart from its
+// motoneurons, muscles and mechanics, which read the interneurons' potentials.
+TEST(PartitionedSimulator, NeuronsGrainSplitsTheSpikingCellsFromTheirNetwork) {
+  auto joint = model::build_single_joint_model("middle", model::JointType::Fti);
+  const model::ModelPartition P = joint->partition(model::PartitionGrain::Neurons);
+  ASSERT_EQ(P.size(), 2u);
+  ASSERT_EQ(P.stiff.size(), 2u);
+  EXPECT_EQ(P.states[0].size(), 12u);  // 2 CPG, 2 inhibitory and 2 sensory interneurons, (V, h) each
+  EXPECT_TRUE(P.stiff[0]);
+  EXPECT_EQ(P.states[1].size(), 14u);  // 2 motoneurons (5 states), 2 muscles, angle, velocity
+  EXPECT_FALSE(P.stiff[1]);
+  EXPECT_EQ(P.names[1], "middle.fti");
+  std::vector<std::string> read;
+  for (size_t i : P.inputs[1]) read.push_back(joint->states()[i].name);
+  EXPECT_EQ(read, (std::vector<std::string>{"middle.fti.in_flx.V", "middle.fti.in_ext.V"}));
+  EXPECT_TRUE(P.inputs[0].empty());  // the isolated joint has no sensory feedback
+  expect_parts_reproduce_rhs(*joint, 1500.0, model::PartitionGrain::Neurons);
+
+  model::ThreeLegOptions t;
+  auto legs = model::build_three_leg_model(t);
+  const model::ModelPartition L = legs->partition(model::PartitionGrain::Neurons);
+  EXPECT_EQ(L.size(), 18u);
+  EXPECT_EQ(std::count(L.stiff.begin(), L.stiff.end(), 1), 9);
+  expect_parts_reproduce_rhs(*legs, 1500.0, model::PartitionGrain::Neurons);
+  // Rate motoneurons: no spikes to split off, the Joints partition.
+  t.motoneuron = model::MotoneuronModel::Rate;
+  auto rate = model::build_three_leg_model(t);
+  EXPECT_EQ(rate->partition(model::PartitionGrain::Neurons).size(), 9u);
+  EXPECT_TRUE(rate->partition(model::PartitionGrain::Neurons).stiff.empty());
+}
+
 TEST(PartitionedSimulator, ThreeLegsAreNineJointParts) {
   model::ThreeLegOptions t;
   t.motoneuron = model::MotoneuronModel::Rate;
   auto m = model::build_three_leg_model(t);
-  const model::ModelPartition P = m->partition();
+  const model::ModelPartition P = m->partition(model::PartitionGrain::Joints);
   ASSERT_EQ(P.size(), 9u);
   for (const char* leg : {"front", "middle", "hind"})
     for (const char* joint : {"thc", "ctr", "fti"})
