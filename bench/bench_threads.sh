@@ -18,7 +18,7 @@ printf "%-8s %-30s %7s %8s %8s %8s %9s %9s  %s\n" mn variant threads wall_s cpu_
 for mn in spiking rate; do
   if [ $mn = spiking ]; then integ=erk_dp5 tol=1e-6; else integ=cvodes_bdf tol=1e-7; fi
   variants=("default" "default @0.25")
-  [ $mn = rate ] && variants+=("1=1e-6,mV=1e-5,rad/ms=1e-6" "1=1e-6,mV=1e-5,rad/ms=1e-6 @0.25")
+  [ $mn = rate ] && variants+=("1=1e-6,mV=1e-5" "1=1e-6,mV=1e-5 @0.25")
   for v in "${variants[@]}"; do
     seq_wall="" seq_cpu=""
     w=$WINDOW; u=$v

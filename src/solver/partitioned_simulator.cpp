@@ -670,6 +670,17 @@ void Partitioned::finish(const std::vector<double>& p) {
 // The absolute tolerance of each of `states` (SolverOptions::atol_by_unit).
 std::vector<double> state_atol(const model::OdeModel& model, const SolverOptions& options,
                                const std::vector<size_t>& states) {
+  // A unit no state has would silently change nothing ("rad/ms" for velocities in rad/s).
+  for (const auto& entry : options.atol_by_unit) {
+    const std::string& unit = entry.first;
+    const auto& all = model.states();
+    if (std::none_of(all.begin(), all.end(), [&](const model::StateInfo& s) { return s.unit == unit; })) {
+      std::string units;
+      for (const model::StateInfo& s : all)
+        if (units.find("'" + s.unit + "'") == std::string::npos) units += (units.empty() ? "'" : ", '") + s.unit + "'";
+      throw Error("[simulation] atol_by_unit: no state of this model has unit '" + unit + "' (its units: " + units + ")");
+    }
+  }
   std::vector<double> atol(states.size(), options.atol);
   for (size_t i = 0; i < states.size(); ++i)
     for (const auto& [unit, value] : options.atol_by_unit)

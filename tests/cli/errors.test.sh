@@ -42,6 +42,10 @@ expect_error "no sensitivity to a triggered command time" "no sensitivity to gai
 printf '[model]\ntype = "three_legs"\n[simulation]\npartitioned = "yes"\n' >"$tmp/part.toml"
 expect_error "partitioned must be a boolean, names file:line" "part.toml:4: 'partitioned' must be true, false, \"auto\" or \"neurons\"" \
   "$PHASMID" simulate "$tmp/part.toml" -o "$tmp/g.h5" -q
+printf '[model]\ntype = "single_joint"\n[simulation]\nt_end_ms = 10\natol_by_unit = { "rad/ms" = 1e-6 }\n' >"$tmp/unit.toml"
+expect_error "atol_by_unit with a unit no state has" "no state of this model has unit 'rad/ms' (its units: 'mV', '1', 'rad', 'rad/s')" \
+  "$PHASMID" simulate "$tmp/unit.toml" -o "$tmp/u.h5" -q
+[ -e "$tmp/u.h5" ] && { echo "FAIL: output left after the atol_by_unit error"; fail=$((fail+1)); }
 expect_error "ratios bad angle" "not a number" "$PHASMID" ratios --joint fti --angles 45,x
 expect_error "solver failure is reported" "CVODES failed" \
   "$PHASMID" simulate "$SRC/configs/fti_mechanical.toml" --set middle.fti.l_E0=0.1 -o "$tmp/d.h5" -q

@@ -41,6 +41,21 @@ TEST(StateAtol, LooserPotentialsTakeFewerStepsAndAtolItselfChangesNothing) {
   }
 }
 
+// A unit no state has is an error naming it and the model's units, whole system and partitioned
+// (the velocities are in rad/s: "rad/ms" once changed nothing without a word).
+TEST(StateAtol, AUnitNoStateHasIsAnError) {
+  for (auto partitioning : {solver::Partitioning::Off, solver::Partitioning::On}) {
+    try {
+      run_leg(partitioning, {{"mV", 1e-5}, {"rad/ms", 1e-6}});
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("atol_by_unit: no state of this model has unit 'rad/ms'"), std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("'rad/s'"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(StateAtol, RefusedWithSensitivities) {
   model::LegOptions l;
   l.motoneuron = model::MotoneuronModel::Rate;
