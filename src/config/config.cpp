@@ -133,6 +133,9 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
     } else {
       throw Error(where(cfg, *n) + ": 'partitioned' must be true, false, \"auto\" or \"neurons\"");
     }
+    if (s.solver.partitioning == solver::Partitioning::Neurons && s.solver.threads >= 2)
+      throw Error(where(cfg, *n) + ": 'partitioned = \"neurons\"' runs on one thread (threads = 1): " +
+                  solver::kNeuronsOnOneThread);
   }
   return s;
 }

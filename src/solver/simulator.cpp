@@ -501,6 +501,8 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const OutputTimes
   const bool partition = options_.partitioning == Partitioning::On || options_.partitioning == Partitioning::Neurons ||
                          (options_.partitioning == Partitioning::Auto && model_.partition_by_default());
   if (partition && ns == 0) {
+    if (options_.partitioning == Partitioning::Neurons && options_.threads >= 2)
+      throw Error(std::string("partitioning Neurons runs on one thread: ") + kNeuronsOnOneThread);
     const model::ModelPartition parts = model_.partition(
         options_.partitioning == Partitioning::Neurons ? model::PartitionGrain::Neurons : model::PartitionGrain::Joints);
     if (parts.size() > 1) return run_partitioned(model_, parts, options_, p_given, output_times, roots);

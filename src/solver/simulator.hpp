@@ -35,6 +35,9 @@ enum class VectorKernels { Phasmid, Sundials };
 // On: one integrator per joint network (model::PartitionGrain::Joints). Neurons: also each
 // network's spiking cells apart from the stiff network that drives them (PartitionGrain::Neurons).
 enum class Partitioning { Auto, On, Off, Neurons };
+// Why Partitioning::Neurons refuses threads >= 2 (docs/solver.md "Integrators").
+inline constexpr const char* kNeuronsOnOneThread =
+    "the windowed driver would extrapolate the presynaptic potentials over its window";
 
 struct SolverOptions {
   double rtol = 1e-8;

@@ -42,6 +42,9 @@ expect_error "no sensitivity to a triggered command time" "no sensitivity to gai
 printf '[model]\ntype = "three_legs"\n[simulation]\npartitioned = "yes"\n' >"$tmp/part.toml"
 expect_error "partitioned must be a boolean, names file:line" "part.toml:4: 'partitioned' must be true, false, \"auto\" or \"neurons\"" \
   "$PHASMID" simulate "$tmp/part.toml" -o "$tmp/g.h5" -q
+printf '[model]\ntype = "single_joint"\n[simulation]\nthreads = 2\npartitioned = "neurons"\n' >"$tmp/neur.toml"
+expect_error "partitioned = neurons on two threads, names file:line" "neur.toml:5: 'partitioned = \"neurons\"' runs on one thread (threads = 1)" \
+  "$PHASMID" simulate "$tmp/neur.toml" -o "$tmp/n.h5" -q
 printf '[model]\ntype = "single_joint"\n[simulation]\nt_end_ms = 10\natol_by_unit = { "rad/ms" = 1e-6 }\n' >"$tmp/unit.toml"
 expect_error "atol_by_unit with a unit no state has" "no state of this model has unit 'rad/ms' (its units: 'mV', '1', 'rad', 'rad/s')" \
   "$PHASMID" simulate "$tmp/unit.toml" -o "$tmp/u.h5" -q
