@@ -176,16 +176,15 @@ ModelPartition NetworkModel::partition(PartitionGrain grain) const {
     std::string& name = P.names[part_of[j.angle_state]];
     name += (name.empty() ? "" : "+") + j.mech.prefix;
   }
-  // A part without a joint (named after its first state) is a network of neurons; without a
-  // spiking motoneuron it is stiff and smooth.
-  if (split) P.stiff.assign(P.size(), 0);
-  for (size_t k = 0; k < P.size(); ++k) {
-    if (!P.names[k].empty()) continue;
-    P.names[k] = states_[P.states[k].front()].name;
-    if (split) P.stiff[k] = 1;
+  for (size_t k = 0; k < P.size(); ++k)
+    if (P.names[k].empty()) P.names[k] = states_[P.states[k].front()].name;
+  // A part without a joint or a spiking motoneuron is a network of neurons: stiff and smooth.
+  if (split) {
+    P.stiff.assign(P.size(), 1);
+    for (const Joint& j : joints_) P.stiff[part_of[j.angle_state]] = 0;
+    for (const Neuron& nr : neurons_)
+      if (nr.motoneuron) P.stiff[part_of[nr.state]] = 0;
   }
-  for (const Neuron& nr : neurons_)
-    if (split && nr.motoneuron) P.stiff[part_of[nr.state]] = 0;
   return P;
 }
 

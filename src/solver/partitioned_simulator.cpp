@@ -39,6 +39,7 @@ struct PartSolver {
   std::vector<size_t> inputs;                         // global indices of states it reads from others
   std::vector<std::pair<size_t, size_t>> input_from;  // per input: (part, index into that part's exports)
   std::vector<size_t> exports;                        // local indices of its states others read
+  bool stiff = false;  // ModelPartition::stiff: BDF at stiff_part_tol in an explicit run
   std::unique_ptr<model::OdeModelPart> eq;
   std::unique_ptr<IntegratorSession> session;
 
@@ -207,6 +208,7 @@ void build_parts(Run& run, const model::OdeModel& model, const model::ModelParti
     ps->states = P.states[k];
     ps->history = StepHistory(ps->states.size());
     ps->inputs = P.inputs[k];
+    ps->stiff = P.is_stiff(k);
     ps->eq = model.make_part(P, k);
     if (!ps->eq) throw Error("internal: model " + model.kind() + " has no equations for part " + ps->name);
     ps->yfull.assign(n, 0.0);
@@ -265,9 +267,8 @@ SolverOptions options_of_part(const SolverOptions& options, bool stiff) {
 }
 
 // Each part's integrator from y0, integrating towards the first stop.
-void start_sessions(Run& run, const model::ModelPartition& partition, const model::OdeModel& model,
-                    const std::vector<std::unique_ptr<SundialsContext>>& contexts, const SolverOptions& options,
-                    const std::vector<double>& y0, double first_stop) {
+void start_sessions(Run& run, const model::OdeModel& model, const std::vector<std::unique_ptr<SundialsContext>>& contexts,
+                    const SolverOptions& options, const std::vector<double>& y0, double first_stop) {
   for (size_t k = 0; k < run.parts.size(); ++k) {
     PartSolver& ps = *run.parts[k];
     SUNContext ctx = contexts[std::min(k, contexts.size() - 1)]->get();
@@ -276,7 +277,7 @@ void start_sessions(Run& run, const model::ModelPartition& partition, const mode
     // Before its first step a part's polynomial is its initial value.
     ps.coef.assign(static_cast<size_t>(kMaxOrder + 1) * ps.exports.size(), 0.0);
     for (size_t e = 0; e < ps.exports.size(); ++e) ps.coef[e] = y0[ps.states[ps.exports[e]]];
-    const SolverOptions part_options = options_of_part(options, partition.is_stiff(k));
+    const SolverOptions part_options = options_of_part(options, ps.stiff);
     if (is_explicit_rk(part_options.integrator)) {
       ps.session = std::make_unique<ErkSession>(ctx, part_options, own.data(), own.size(), part_rhs, &ps);
     } else {
@@ -668,19 +669,20 @@ void Partitioned::finish(const std::vector<double>& p) {
 }  // namespace
 
 // The absolute tolerance of each of `states` (SolverOptions::atol_by_unit).
+void check_atol_units(const model::OdeModel& model, const SolverOptions& options) {
+  std::vector<std::string> units;  // in the order of their first state
+  for (const model::StateInfo& s : model.states())
+    if (std::find(units.begin(), units.end(), s.unit) == units.end()) units.push_back(s.unit);
+  for (const auto& entry : options.atol_by_unit) {
+    if (std::find(units.begin(), units.end(), entry.first) != units.end()) continue;
+    std::string list;
+    for (const std::string& u : units) list += (list.empty() ? "'" : ", '") + u + "'";
+    throw Error("[simulation] atol_by_unit: no state of this model has unit '" + entry.first + "' (its units: " + list + ")");
+  }
+}
+
 std::vector<double> state_atol(const model::OdeModel& model, const SolverOptions& options,
                                const std::vector<size_t>& states) {
-  // A unit no state has would silently change nothing ("rad/ms" for velocities in rad/s).
-  for (const auto& entry : options.atol_by_unit) {
-    const std::string& unit = entry.first;
-    const auto& all = model.states();
-    if (std::none_of(all.begin(), all.end(), [&](const model::StateInfo& s) { return s.unit == unit; })) {
-      std::string units;
-      for (const model::StateInfo& s : all)
-        if (units.find("'" + s.unit + "'") == std::string::npos) units += (units.empty() ? "'" : ", '") + s.unit + "'";
-      throw Error("[simulation] atol_by_unit: no state of this model has unit '" + unit + "' (its units: " + units + ")");
-    }
-  }
   std::vector<double> atol(states.size(), options.atol);
   for (size_t i = 0; i < states.size(); ++i)
     for (const auto& [unit, value] : options.atol_by_unit)
@@ -707,7 +709,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
   run.roots = &roots;
   for (double v : schedule.p()) run.pK.emplace_back(v);
   build_parts(run, model, P, roots);
-  start_sessions(run, P, model, contexts, options, y0, schedule.next_stop());
+  start_sessions(run, model, contexts, options, y0, schedule.next_stop());
 
   SolveResult res;
   Partitioned driver(run, model, options, output_times, caller_roots.size(), y0, res);

@@ -39,6 +39,9 @@ namespace phasmid::solver {
 // by the state's unit, SolverOptions::atol for the others.
 std::vector<double> state_atol(const model::OdeModel& model, const SolverOptions& options,
                                const std::vector<size_t>& states);
+// Throws unless every unit of SolverOptions::atol_by_unit is a unit of some state of the model:
+// a unit no state has would silently change nothing ("rad/ms" for velocities in rad/s).
+void check_atol_units(const model::OdeModel& model, const SolverOptions& options);
 
 SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPartition& partition,
                             const SolverOptions& options, const std::vector<double>& p,

@@ -498,6 +498,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const OutputTimes
   if (output_times.empty() || output_times.front() < 0) throw Error("output times must start at t >= 0");
   const size_t ns = sens_params.size();
   if (ns && options_.output_sink) throw Error("internal: an output sink takes no sensitivities");
+  check_atol_units(model_, options_);
   const bool partition = options_.partitioning == Partitioning::On || options_.partitioning == Partitioning::Neurons ||
                          (options_.partitioning == Partitioning::Auto && model_.partition_by_default());
   if (partition && ns == 0) {
