@@ -62,7 +62,7 @@ class OdeRun : public ScenarioRun {
   std::string summary() const override {
     const long parts = result_.stats.integrators;
     return fmt::format("{} states, {:g} ms in {:g} s{}", model_.num_states(), t_end_ms_, result_.stats.wall_seconds,
-                       parts > 1 ? fmt::format(" ({} joint integrators)", parts) : "");
+                       parts > 1 ? fmt::format(" ({} integrators, one per part)", parts) : "");
   }
 
  private:
