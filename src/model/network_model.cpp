@@ -105,8 +105,12 @@ struct DisjointSets {
 class NetworkPart final : public OdeModelPart {
  public:
   NetworkPart(const NetworkModel& m, NetworkComponents c) : model_(m), comp_(std::move(c)) {}
+  void bind(const double* p) override {
+    model_.bind_neurons(comp_, p, bound_);
+    bound_p_ = p;
+  }
   void rhs(double t, const double* y, const double* p, double* ydot) const override {
-    model_.eval_components(comp_, t, y, p, ydot);
+    model_.eval_components(comp_, t, y, p, ydot, p == bound_p_ ? &bound_ : nullptr);
   }
   void rhs(double t, const JetK* y, const JetK* p, JetK* ydot) const override {
     model_.eval_components(comp_, t, y, p, ydot);
@@ -115,8 +119,20 @@ class NetworkPart final : public OdeModelPart {
  private:
   const NetworkModel& model_;
   NetworkComponents comp_;
+  BoundNeuronParams bound_;
+  const double* bound_p_ = nullptr;  // the vector bound_ was gathered from
 };
 }  // namespace
+
+void NetworkModel::bind_neurons(const NetworkComponents& c, const double* p, BoundNeuronParams& out) const {
+  out.nap.assign(c.neurons.size(), {});
+  out.mn.assign(c.neurons.size(), {});
+  for (size_t j = 0; j < c.neurons.size(); ++j) {
+    const Neuron& n = neurons_[c.neurons[j]];
+    if (n.motoneuron) gather_params(n.mn, p, out.mn[j]);
+    else gather_params(n.nap, p, out.nap[j]);
+  }
+}
 
 size_t NetworkModel::neuron_state_count(const Neuron& n) const {
   return n.motoneuron && !rate_mn_ ? 5 : 2;

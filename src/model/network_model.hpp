@@ -14,6 +14,7 @@
 // Optionally (MotoneuronModel::Rate) the motoneurons are non-spiking rate cells and the muscle
 // activation follows their firing rate (docs/model.md, "Rate motoneurons").
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "common/units.hpp"
@@ -118,10 +119,24 @@ struct NetworkComponents {
 // neuron or muscle; nap and mn hold the evaluated neurons' parameters, gathered once per
 // evaluation, by position in NetworkComponents::neurons (a part's few stay in the L1 cache).
 template <class T>
+struct NetworkScratch;
+
+// The neurons' parameters of some components gathered once (NetworkModel::bind_neurons), by
+// position in NetworkComponents::neurons: a double evaluation given them reads them in place
+// instead of gathering each neuron's 14 or 32 values by index on every call (a tenth of a
+// three-leg run: docs/benchmarks.md "Parameters bound per run"). They hold for one parameter
+// vector; whoever changes it binds again.
+struct BoundNeuronParams {
+  std::vector<NapNeuronParams<double>> nap;
+  std::vector<MotoneuronParams<double>> mn;
+};
+
+template <class T>
 struct NetworkScratch {
   std::vector<T> I_syn, g_extra, tone_release, rate_mn, args, ex;
   std::vector<NapNeuronParams<T>> nap;
   std::vector<MotoneuronParams<T>> mn;
+  const BoundNeuronParams* bound = nullptr;  // set for double evaluations given bound parameters
 };
 
 class NetworkModel : public OdeModelT<NetworkModel> {
@@ -183,13 +198,21 @@ class NetworkModel : public OdeModelT<NetworkModel> {
 
   template <class T>
   void eval(double t, const T* y, const T* p, T* ydot) const { eval_components(all_, t, y, p, ydot); }
-  // The equations of the given components only (ydot written at their states).
+  // The equations of the given components only (ydot written at their states). bound: the
+  // components' neuron parameters from p (bind_neurons), used by double evaluations only.
   template <class T>
-  void eval_components(const NetworkComponents& c, double t, const T* y, const T* p, T* ydot) const;
+  void eval_components(const NetworkComponents& c, double t, const T* y, const T* p, T* ydot,
+                       const BoundNeuronParams* bound = nullptr) const;
+  void bind_neurons(const NetworkComponents& c, const double* p, BoundNeuronParams& out) const;
 
  private:
   template <class T>
   size_t exp_args(const NetworkComponents& comp, const T* y, const T* p, NetworkScratch<T>& sc) const;
+  // The neuron parameters an evaluation reads: bound ones (double only) or sc's, gathered.
+  template <class T>
+  static const NapNeuronParams<T>& nap_params(const NetworkScratch<T>& sc, size_t j);
+  template <class T>
+  static const MotoneuronParams<T>& mn_params(const NetworkScratch<T>& sc, size_t j);
   template <class T>
   void currents_and_drives(const NetworkComponents& comp, double t, const T* y, const T* p, NetworkScratch<T>& sc,
                            size_t& k) const;
@@ -250,14 +273,14 @@ size_t NetworkModel::exp_args(const NetworkComponents& comp, const T* y, const T
   for (size_t j = 0; j < comp.neurons.size(); ++j) {
     const Neuron& n = neurons_[comp.neurons[j]];
     if (!n.motoneuron) {
-      gather_params(n.nap, p, sc.nap[j]);
-      nap_exp_args(sc.nap[j], y[n.state], a);
+      if (!sc.bound) gather_params(n.nap, p, sc.nap[j]);
+      nap_exp_args(nap_params(sc, j), y[n.state], a);
       a += kNapExpArgs;
       continue;
     }
-    gather_params(n.mn, p, sc.mn[j]);
+    if (!sc.bound) gather_params(n.mn, p, sc.mn[j]);
     if (!rate_mn_) {
-      motoneuron_exp_args(sc.mn[j], y[n.state], a);
+      motoneuron_exp_args(mn_params(sc, j), y[n.state], a);
       a += kMotoneuronExpArgs;
     }
   }
@@ -282,9 +305,25 @@ void NetworkModel::gather_params(const MotoneuronIdx& x, const T* p, MotoneuronP
 }
 
 template <class T>
-void NetworkModel::eval_components(const NetworkComponents& comp, double t, const T* y, const T* p, T* ydot) const {
+const NapNeuronParams<T>& NetworkModel::nap_params(const NetworkScratch<T>& sc, size_t j) {
+  if constexpr (std::is_same_v<T, double>)
+    if (sc.bound) return sc.bound->nap[j];
+  return sc.nap[j];
+}
+
+template <class T>
+const MotoneuronParams<T>& NetworkModel::mn_params(const NetworkScratch<T>& sc, size_t j) {
+  if constexpr (std::is_same_v<T, double>)
+    if (sc.bound) return sc.bound->mn[j];
+  return sc.mn[j];
+}
+
+template <class T>
+void NetworkModel::eval_components(const NetworkComponents& comp, double t, const T* y, const T* p, T* ydot,
+                                   const BoundNeuronParams* bound) const {
   // Only the entries of comp's neurons and muscles are used (synapses and modulations target them).
   thread_local NetworkScratch<T> sc;
+  sc.bound = std::is_same_v<T, double> ? bound : nullptr;
   sc.I_syn.resize(neurons_.size());
   sc.g_extra.resize(neurons_.size());
   sc.nap.resize(comp.neurons.size());
@@ -351,19 +390,19 @@ void NetworkModel::neuron_equations(const NetworkComponents& comp, const T* y, c
     const size_t i = comp.neurons[j];
     const Neuron& n = neurons_[i];
     if (!n.motoneuron) {
-      NapNeuronParams<T>& q = sc.nap[j];
-      q.g_app += sc.g_extra[i];
-      nap_neuron_rhs(q, y[n.state], y[n.state + 1], sc.I_syn[i], e + k, ydot[n.state], ydot[n.state + 1]);
+      const NapNeuronParams<T>& q = nap_params(sc, j);
+      nap_neuron_rhs(q, T(q.g_app + sc.g_extra[i]), y[n.state], y[n.state + 1], sc.I_syn[i], e + k, ydot[n.state],
+                     ydot[n.state + 1]);
       k += kNapExpArgs;
       continue;
     }
-    MotoneuronParams<T>& q = sc.mn[j];
-    q.g_app += sc.g_extra[i];
+    const MotoneuronParams<T>& q = mn_params(sc, j);
+    const T g_app = q.g_app + sc.g_extra[i];
     if (rate_mn_) {
       sc.rate_mn[i] = motoneuron_rate(y[n.state], p[rate_.V_th], p[rate_.width], p[rate_.dV_ref], p[rate_.exponent]);
-      rate_motoneuron_rhs(q, p[rate_.q_max], &y[n.state], sc.I_syn[i], sc.rate_mn[i], &ydot[n.state]);
+      rate_motoneuron_rhs(q, g_app, p[rate_.q_max], &y[n.state], sc.I_syn[i], sc.rate_mn[i], &ydot[n.state]);
     } else {
-      motoneuron_rhs(q, &y[n.state], sc.I_syn[i], e + k, &ydot[n.state]);
+      motoneuron_rhs(q, g_app, &y[n.state], sc.I_syn[i], e + k, &ydot[n.state]);
       k += kMotoneuronExpArgs;
     }
   }

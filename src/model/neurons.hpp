@@ -43,15 +43,22 @@ void nap_exp_args(const NapNeuronParams<P>& q, const T& V, T* a) {
 // The inactivation follows dh/dt = eps (h_inf - h) cosh(gamma_tau (V - V_tau_h)) (docs/model.md "Neurons":
 // tau_h(V) = 1 / (eps cosh(...)), the form of Daun et al. 2009 that Table A.1's
 // "time constant coefficient" eps belongs to).
-template <class T, class P>
-void nap_neuron_rhs(const NapNeuronParams<P>& q, const T& V, const T& h, const T& I_syn, const T* e, T& dV, T& dh) {
+// g_app: the drive's conductance, q.g_app or that plus a modulation's (a network's extra drive).
+template <class T, class P, class G>
+void nap_neuron_rhs(const NapNeuronParams<P>& q, const G& g_app, const T& V, const T& h, const T& I_syn,
+                    const T* e, T& dV, T& dh) {
   T m_inf = T(1.0) / (T(1.0) + e[0]);  // (2.1)
   T h_inf = T(1.0) / (T(1.0) + e[1]);
   T I_NaP = q.g_NaP * m_inf * h * (V - q.E_Na);
   T I_L = q.g_L * (V - q.E_L);
-  T I_app = q.g_app * (V - q.E_app);
+  T I_app = g_app * (V - q.E_app);
   dV = -(I_NaP + I_L + I_syn + I_app) / q.C_m;
   dh = q.epsilon * (h_inf - h) * (0.5 * (e[2] + e[3]));
+}
+
+template <class T, class P>
+void nap_neuron_rhs(const NapNeuronParams<P>& q, const T& V, const T& h, const T& I_syn, const T* e, T& dV, T& dh) {
+  nap_neuron_rhs(q, q.g_app, V, h, I_syn, e, dV, dh);
 }
 
 template <class T, class P>
@@ -98,8 +105,8 @@ void motoneuron_exp_args(const MotoneuronParams<P>& q, const T& V, T* a) {
 }
 
 // State order: V, m_Na, h_Na, m_K, m_q; e from motoneuron_exp_args.
-template <class T, class P>
-void motoneuron_rhs(const MotoneuronParams<P>& q, const T* s, const T& I_syn, const T* e, T* ds) {
+template <class T, class P, class G>
+void motoneuron_rhs(const MotoneuronParams<P>& q, const G& g_app, const T* s, const T& I_syn, const T* e, T* ds) {
   const T& V = s[0];
   const T &mNa = s[1], &hNa = s[2], &mK = s[3], &mq = s[4];
   T a_mNa = q.Na_am1 * exprel_ratio(T(q.Na_am2 - V), q.Na_am3, e[0]);      // (2.10)
@@ -113,12 +120,17 @@ void motoneuron_rhs(const MotoneuronParams<P>& q, const T* s, const T& I_syn, co
   T I_K = q.g_K * mK * (V - q.E_K);                                        // (2.4)
   T I_q = q.g_q * mq * (V - q.E_q);                                        // (2.5)
   T I_L = q.g_L * (V - q.E_L);                                             // (2.6)
-  T I_app = q.g_app * (V - q.E_app);                                       // (2.8)
+  T I_app = g_app * (V - q.E_app);                                         // (2.8)
   ds[0] = -(I_Na + I_K + I_q + I_L + I_syn + I_app) / q.C_m;               // (2.2)
   ds[1] = a_mNa * (1.0 - mNa) - b_mNa * mNa;                               // (2.9)
   ds[2] = a_hNa * (1.0 - hNa) - b_hNa * hNa;
   ds[3] = a_mK * (1.0 - mK) - b_mK * mK;
   ds[4] = q.r_q * (mq_inf - mq);                                           // (2.16)
+}
+
+template <class T, class P>
+void motoneuron_rhs(const MotoneuronParams<P>& q, const T* s, const T& I_syn, const T* e, T* ds) {
+  motoneuron_rhs(q, q.g_app, s, I_syn, e, ds);
 }
 
 template <class T, class P>
@@ -158,14 +170,14 @@ T motoneuron_rate(const T& V, const P& V_th, const P& width, const P& dV_ref, co
   return exp(log_R);
 }
 
-template <class T, class P>
-void rate_motoneuron_rhs(const MotoneuronParams<P>& q, const P& q_max, const T* s, const T& I_syn, const T& R,
-                         T* ds) {
+template <class T, class P, class G>
+void rate_motoneuron_rhs(const MotoneuronParams<P>& q, const G& g_app, const P& q_max, const T* s, const T& I_syn,
+                         const T& R, T* ds) {
   const T& V = s[0];
   const T& mq = s[1];
   T I_q = q.g_q * mq * (V - q.E_q);
   T I_L = q.g_L * (V - q.E_L);
-  T I_app = q.g_app * (V - q.E_app);
+  T I_app = g_app * (V - q.E_app);
   ds[0] = -(I_q + I_L + I_syn + I_app) / q.C_m;
   ds[1] = q.r_q * (q_max * R - mq);
 }

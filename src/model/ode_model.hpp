@@ -47,6 +47,10 @@ struct ModelPartition {
 class OdeModelPart {
  public:
   virtual ~OdeModelPart() = default;
+  // The parameter vector the driver's double rhs calls pass from now on: a part may keep
+  // values taken from it and use them while a call passes this same pointer. The driver binds
+  // again whenever it changes the vector's values (a triggered command time).
+  virtual void bind(const double* p) { (void)p; }
   virtual void rhs(double t, const double* y, const double* p, double* ydot) const = 0;
   virtual void rhs(double t, const JetK* y, const JetK* p, JetK* ydot) const = 0;
 };

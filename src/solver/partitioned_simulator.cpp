@@ -211,6 +211,7 @@ void build_parts(Run& run, const model::OdeModel& model, const model::ModelParti
     ps->stiff = P.is_stiff(k);
     ps->eq = model.make_part(P, k);
     if (!ps->eq) throw Error("internal: model " + model.kind() + " has no equations for part " + ps->name);
+    ps->eq->bind(run.p->data());
     ps->yfull.assign(n, 0.0);
     ps->ffull.assign(n, 0.0);
     ps->yK.assign(n, JetK(0.0));
@@ -611,6 +612,7 @@ void Partitioned::feed_triggers(CommandSchedule& s) {
     if (!s.fire(k, e.t, e.direction, e.y.data(), res_.commands)) continue;
     const double tau = e.t + s.triggers()[k].delay_ms;
     for (size_t q : s.triggers()[k].targets) run_.pK[q] = JetK(tau);
+    for (auto& x : run_.parts) x->eq->bind(s.p().data());
     if (tau < s.t_end()) add_command_time(s, tau, k);
   }
 }

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
 
 #include "features/features.hpp"
@@ -73,6 +74,11 @@ void expect_parts_reproduce_rhs(const model::OdeModel& m, double t_end,
       const double ulps = grain == model::PartitionGrain::Joints ? 0.0 : 1e-13;
       for (size_t i : P.states[k])
         ASSERT_NEAR(f_part[i], f_whole[i], ulps * std::abs(f_whole[i])) << P.names[k] << ": " << m.states()[i].name;
+      // Bound to p (OdeModelPart::bind, as the driver does): the same numbers.
+      std::vector<double> f_bound(n, NAN);
+      eq->bind(p.data());
+      eq->rhs(grid[k_out], y_part.data(), p.data(), f_bound.data());
+      for (size_t i : P.states[k]) ASSERT_EQ(f_bound[i], f_part[i]) << "bound " << P.names[k] << ": " << m.states()[i].name;
     }
   }
 }
@@ -179,6 +185,42 @@ TEST(PartitionedSimulator, NeuronsGrainSplitsTheSpikingCellsFromTheirNetwork) {
   auto rate = model::build_three_leg_model(t);
   EXPECT_EQ(rate->partition(model::PartitionGrain::Neurons).size(), 9u);
   EXPECT_TRUE(rate->partition(model::PartitionGrain::Neurons).stiff.empty());
+}
+
+// A part bound to a parameter vector follows it when bound again after its values change
+// (a triggered command time), and reads the values it is passed when called with another one.
+TEST(PartitionedSimulator, BoundPartsFollowTheirParameters) {
+  model::ThreeLegOptions t;
+  for (auto mn : {model::MotoneuronModel::Spiking, model::MotoneuronModel::Rate}) {
+    t.motoneuron = mn;
+    auto m = model::build_three_leg_model(t);
+    const model::ModelPartition P = m->partition(model::PartitionGrain::Joints);
+    const size_t n = m->num_states();
+    std::vector<double> p = m->parameters().values();
+    const std::vector<double> y = m->initial_state(p);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> factor(0.99, 1.01);
+    std::vector<std::unique_ptr<model::OdeModelPart>> parts;
+    for (size_t k = 0; k < P.size(); ++k) {
+      parts.push_back(m->make_part(P, k));
+      parts.back()->bind(p.data());
+    }
+    std::vector<double> f_whole(n), f_part(n);
+    auto expect_whole = [&](const std::vector<double>& q, const char* what) {
+      m->rhs(0.0, y.data(), q.data(), f_whole.data());
+      for (size_t k = 0; k < P.size(); ++k) {
+        parts[k]->rhs(0.0, y.data(), q.data(), f_part.data());
+        for (size_t i : P.states[k]) ASSERT_EQ(f_part[i], f_whole[i]) << what << ": " << m->states()[i].name;
+      }
+    };
+    expect_whole(p, "bound");
+    for (double& v : p) v *= factor(rng);
+    for (auto& part : parts) part->bind(p.data());
+    expect_whole(p, "bound again after a change");
+    std::vector<double> other = p;
+    for (double& v : other) v *= factor(rng);
+    expect_whole(other, "called with another vector");
+  }
 }
 
 TEST(PartitionedSimulator, ThreeLegsAreNineJointParts) {
