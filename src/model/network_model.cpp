@@ -204,6 +204,8 @@ ModelPartition NetworkModel::partition(PartitionGrain grain) const {
   return P;
 }
 
+std::unique_ptr<OdeModelPart> NetworkModel::make_whole() const { return std::make_unique<NetworkPart>(*this, all_); }
+
 std::unique_ptr<OdeModelPart> NetworkModel::make_part(const ModelPartition& P, size_t k) const {
   std::vector<char> mine(num_states(), 0);
   for (size_t i : P.states.at(k)) mine[i] = 1;

@@ -115,22 +115,20 @@ struct NetworkComponents {
   std::vector<size_t> synapses, modulations, neurons, muscles, joints;
 };
 
-// Per-thread working storage of one evaluation (NetworkModel::eval_components), indexed by
-// neuron or muscle; nap and mn hold the evaluated neurons' parameters, gathered once per
-// evaluation, by position in NetworkComponents::neurons (a part's few stay in the L1 cache).
-template <class T>
-struct NetworkScratch;
-
 // The neurons' parameters of some components gathered once (NetworkModel::bind_neurons), by
 // position in NetworkComponents::neurons: a double evaluation given them reads them in place
-// instead of gathering each neuron's 14 or 32 values by index on every call (a tenth of a
-// three-leg run: docs/benchmarks.md "Parameters bound per run"). They hold for one parameter
-// vector; whoever changes it binds again.
+// instead of gathering each neuron's 14 or 32 values by index on every call (an eighth of a
+// spiking three-leg run: docs/benchmarks.md "Parameters bound per run"). They hold for one
+// parameter vector; whoever changes its values binds again.
 struct BoundNeuronParams {
   std::vector<NapNeuronParams<double>> nap;
   std::vector<MotoneuronParams<double>> mn;
 };
 
+// Per-thread working storage of one evaluation (NetworkModel::eval_components), indexed by
+// neuron or muscle; nap and mn hold the evaluated neurons' parameters, gathered once per
+// evaluation unless bound, by position in NetworkComponents::neurons (a part's few stay in
+// the L1 cache).
 template <class T>
 struct NetworkScratch {
   std::vector<T> I_syn, g_extra, tone_release, rate_mn, args, ex;
@@ -195,6 +193,7 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   // integration").
   bool partition_by_default() const override { return rate_mn_; }
   std::unique_ptr<OdeModelPart> make_part(const ModelPartition& partition, size_t k) const override;
+  std::unique_ptr<OdeModelPart> make_whole() const override;
 
   template <class T>
   void eval(double t, const T* y, const T* p, T* ydot) const { eval_components(all_, t, y, p, ydot); }

@@ -160,6 +160,9 @@ class OdeModel {
     (void)partition; (void)k;
     return nullptr;
   }
+  // The whole right-hand side as one part, for a run to bind to its parameters
+  // (OdeModelPart::bind); nullptr: the run calls rhs.
+  virtual std::unique_ptr<OdeModelPart> make_whole() const { return nullptr; }
 
  protected:
   size_t add_state(std::string name, std::string unit);

@@ -46,6 +46,7 @@ struct JetScratch {
 struct CallbackData {
   const OdeModel* model;
   const std::vector<double>* p;
+  std::unique_ptr<model::OdeModelPart> eq;  // the model bound to *p (make_whole), or none
   const std::vector<RootSpec>* roots;
   std::vector<size_t> sens_params;
   size_t n;
@@ -73,7 +74,8 @@ struct CallbackData {
 
 int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* ud) {
   auto* d = static_cast<CallbackData*>(ud);
-  d->model->rhs(t, N_VGetArrayPointer(y), d->p->data(), N_VGetArrayPointer(ydot));
+  if (d->eq) d->eq->rhs(t, N_VGetArrayPointer(y), d->p->data(), N_VGetArrayPointer(ydot));
+  else d->model->rhs(t, N_VGetArrayPointer(y), d->p->data(), N_VGetArrayPointer(ydot));
   for (size_t i = 0; i < d->n; ++i)
     if (!std::isfinite(NV_Ith_S(ydot, i))) return 1;  // recoverable: CVODES retries a smaller step
   return 0;
@@ -421,6 +423,7 @@ void WholeSystem::fire_triggers(CommandSchedule& schedule, std::vector<double>& 
     const model::CommandTrigger& tr = schedule.triggers()[k];
     const double when = t_ + tr.delay_ms;
     for (size_t q : tr.targets) d_.set_parameter(q, when);
+    if (d_.eq) d_.eq->bind(schedule.p().data());
     std::vector<double> dte;
     if (ns_) {
       std::vector<double> s_state(ns_);
@@ -514,6 +517,8 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const OutputTimes
   CallbackData d;
   d.model = &model_;
   d.p = &schedule.p();
+  d.eq = model_.make_whole();
+  if (d.eq) d.eq->bind(d.p->data());
   d.roots = &all_roots;
   d.sens_params = sens_params;
   d.n = model_.num_states();

@@ -189,6 +189,7 @@ TEST(PartitionedSimulator, NeuronsGrainSplitsTheSpikingCellsFromTheirNetwork) {
 
 // A part bound to a parameter vector follows it when bound again after its values change
 // (a triggered command time), and reads the values it is passed when called with another one.
+// So does the whole model as one part (OdeModel::make_whole, the whole-system driver's).
 TEST(PartitionedSimulator, BoundPartsFollowTheirParameters) {
   model::ThreeLegOptions t;
   for (auto mn : {model::MotoneuronModel::Spiking, model::MotoneuronModel::Rate}) {
@@ -201,16 +202,19 @@ TEST(PartitionedSimulator, BoundPartsFollowTheirParameters) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> factor(0.99, 1.01);
     std::vector<std::unique_ptr<model::OdeModelPart>> parts;
-    for (size_t k = 0; k < P.size(); ++k) {
-      parts.push_back(m->make_part(P, k));
-      parts.back()->bind(p.data());
-    }
+    std::vector<std::vector<size_t>> states = P.states;
+    for (size_t k = 0; k < P.size(); ++k) parts.push_back(m->make_part(P, k));
+    parts.push_back(m->make_whole());
+    ASSERT_TRUE(parts.back());
+    states.emplace_back(n);
+    for (size_t i = 0; i < n; ++i) states.back()[i] = i;
+    for (auto& part : parts) part->bind(p.data());
     std::vector<double> f_whole(n), f_part(n);
     auto expect_whole = [&](const std::vector<double>& q, const char* what) {
       m->rhs(0.0, y.data(), q.data(), f_whole.data());
-      for (size_t k = 0; k < P.size(); ++k) {
+      for (size_t k = 0; k < parts.size(); ++k) {
         parts[k]->rhs(0.0, y.data(), q.data(), f_part.data());
-        for (size_t i : P.states[k]) ASSERT_EQ(f_part[i], f_whole[i]) << what << ": " << m->states()[i].name;
+        for (size_t i : states[k]) ASSERT_EQ(f_part[i], f_whole[i]) << what << ": " << m->states()[i].name;
       }
     };
     expect_whole(p, "bound");
