@@ -14,7 +14,7 @@ import sys
 # First matching pattern wins; symbols are matched as perf prints them.
 CATEGORIES = [
     ("jacobian (AD)", r"Jet<|fill_jacobian|fill_sparse_jacobian|jac_dense_cb|jac_sparse_cb|part_jac|jac_band_cb"),
-    ("right-hand side", r"eval_components|joint_acceleration|rhs_cb|part_rhs|__ieee754_exp|^exp|exp@|__exp|pow|sincos|sinh|cosh|tanh|__sin|__cos|log|NetworkModel|Model::rhs|muscle|export_value|input_angles"),
+    ("right-hand side", r"eval_components|joint_acceleration|rhs_cb|part_rhs|rhs_trampoline|__ieee754_exp|^exp|exp@|__exp|_ZGV\w*_exp|exp_each|pow|sincos|sinh|cosh|tanh|__sin|__cos|log|NetworkModel|NetworkPart|Model::rhs|muscle|export_value|input_angles"),
     ("factorisation", r"dense_lu_setup|klu_factor|klu_refactor|KLU.*[Ff]actor|GETRF|dense_scale_add_identity|ScaleAddI|sparse_scale_add|MatCopy|MatZero|Setup_Dense|Setup_KLU|amd|colamd|btf"),
     ("linear solves", r"dense_lu_solve|klu_solve|klu_l?t?solve|GETRS|Solve_Dense|Solve_KLU|klu_"),
     ("root functions and event location", r"root_cb|part_roots|[Rr]check|Rcheck|RootFind|cvRoot|arkRoot|Rootfind"),
@@ -24,7 +24,7 @@ CATEGORIES = [
     ("Newton iteration", r"NonlinSol|Newton|cvNls|arkNls"),
     ("integrator core (CVODES/ARKODE step logic)", r"CVode|cvStep|cvNordsieck|cvAdjustOrder|cvComplete|cvSet|cvPredict|cvRescale|cvRestore|cvDo|cvHandle|cvLs|cvUpdate|cvIncreaseBDF|cvChooseEta|cvIncrease|cvDecrease|cv[A-Z]|ERKStep|erkStep|arkStep|arkEvolve|ark[A-Z]|ARKode|SUNAdapt|arkAdapt|ERK|SUNContext|SUNLinSol|SUNMat"),
     ("memory, libc", r"memmove|memcpy|memset|malloc|free|operator new|operator delete|_int_|cfree"),
-    ("run loop and drivers", r"run_loop|advance|Partitioned|take_roots|lagging|WholeSystem|handle_events|PartSolver"),
+    ("run loop and drivers", r"run_loop|run_partitioned|advance|Partitioned|take_roots|lagging|WholeSystem|handle_events|PartSolver|current_time|ProgressLine"),
     ("kernel, loader", r"\[k\]|do_lookup|_dl_|kallsyms"),
 ]
 
