@@ -670,7 +670,6 @@ void Partitioned::finish(const std::vector<double>& p) {
 
 }  // namespace
 
-// The absolute tolerance of each of `states` (SolverOptions::atol_by_unit).
 void check_atol_units(const model::OdeModel& model, const SolverOptions& options) {
   std::vector<std::string> units;  // in the order of their first state
   for (const model::StateInfo& s : model.states())
@@ -683,6 +682,7 @@ void check_atol_units(const model::OdeModel& model, const SolverOptions& options
   }
 }
 
+// The absolute tolerance of each of `states` (SolverOptions::atol_by_unit).
 std::vector<double> state_atol(const model::OdeModel& model, const SolverOptions& options,
                                const std::vector<size_t>& states) {
   std::vector<double> atol(states.size(), options.atol);
