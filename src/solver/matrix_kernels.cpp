@@ -72,7 +72,8 @@ int dense_lu_setup(SUNLinearSolver S, SUNMatrix A) {
   return SUNLS_SUCCESS;
 }
 
-// x = A^-1 b from the factors (SUNDlsMat_denseGETRS).
+// x = A^-1 b from the factors (SUNDlsMat_denseGETRS: the same operations in the same order,
+// so the same numbers).
 int dense_lu_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, Real) {
   auto* content = static_cast<SUNLinearSolverContent_Dense>(S->content);
   const Index n = SM_COLUMNS_D(A);
@@ -82,18 +83,26 @@ int dense_lu_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, Real)
   if (x != b) std::copy(NV_DATA_S(b), NV_DATA_S(b) + n, xd);
   for (Index k = 0; k < n; ++k)
     if (piv[k] != k) std::swap(xd[k], xd[piv[k]]);
-  for (Index k = 0; k < n - 1; ++k) {
+  // Both substitutions carry the next unknown in a register (c): it is finished by one scalar
+  // update before the vector update of the others, so that the chain from one unknown to the
+  // next does not wait for that vector update to be stored and read back (the solve was a
+  // fifth of a rate run; docs/benchmarks.md "The cost of a step").
+  Real c = xd[0];
+  for (Index k = 0; k + 1 < n; ++k) {  // L y = P b, L unit lower triangular
     const Real* col_k = a[k];
-    const Real bk = xd[k];
-    for (Index i = k + 1; i < n; ++i) xd[i] -= col_k[i] * bk;
+    const Real yk = c;
+    xd[k] = yk;
+    c = xd[k + 1] - col_k[k + 1] * yk;
+    for (Index i = k + 2; i < n; ++i) xd[i] -= col_k[i] * yk;
   }
-  for (Index k = n - 1; k > 0; --k) {
+  for (Index k = n - 1; k > 0; --k) {  // U x = y
     const Real* col_k = a[k];
-    xd[k] /= col_k[k];
-    const Real bk = xd[k];
-    for (Index i = 0; i < k; ++i) xd[i] -= col_k[i] * bk;
+    const Real xk = c / col_k[k];
+    xd[k] = xk;
+    c = xd[k - 1] - col_k[k - 1] * xk;
+    for (Index i = 0; i + 1 < k; ++i) xd[i] -= col_k[i] * xk;
   }
-  xd[0] /= a[0][0];
+  xd[0] = c / a[0][0];
   content->last_flag = SUNLS_SUCCESS;
   return SUNLS_SUCCESS;
 }
