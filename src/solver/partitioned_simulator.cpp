@@ -54,6 +54,9 @@ struct PartSolver {
 
   double t = 0.0;        // time reached (CVODES' internal tn)
   bool restart_pending = false;  // at a stop: restarts from there before its next step
+  // Sequential runs: the polynomial is taken from the session only when another part may read
+  // it (flush_polynomial): a part that steps again first never had its last one read.
+  bool polynomial_stale = false;
   size_t next_out = 0;   // first output time not yet written
   long steps_since_output = 0;  // against SolverOptions::max_steps (per output interval)
   std::vector<size_t> roots;          // global root indices watched by this part
@@ -79,6 +82,11 @@ struct PartSolver {
     double v = c[static_cast<size_t>(order) * stride + e];
     for (int d = order - 1; d >= 0; --d) v = v * dt + c[static_cast<size_t>(d) * stride + e];
     return v;
+  }
+
+  void flush_polynomial() {
+    if (polynomial_stale) update_polynomial();
+    polynomial_stale = false;
   }
 
   void update_polynomial() {
@@ -434,9 +442,11 @@ double Partitioned::advance(CommandSchedule& s) {
   stepped_ = lagging(s);
   if (!stepped_) throw Error("internal: partitioned run advanced with every part at its stop");
   PartSolver& ps = *stepped_;
+  for (auto& other : run_.parts)
+    if (other.get() != &ps) other->flush_polynomial();  // ps's step reads them
   double tret = ps.t;
   flag_ = step_once(ps, s, tret);
-  ps.update_polynomial();
+  ps.polynomial_stale = true;
   take_roots(ps, tret);
   return ps.t;
 }
@@ -636,6 +646,7 @@ void Partitioned::add_command_time(CommandSchedule& s, double tau, size_t k) {
 // Part x back to tau (within its last step): its outputs up to tau first (they interpolate its
 // last step), then a restart from its interpolated state at tau.
 void Partitioned::roll_back(PartSolver& x, double tau) {
+  x.flush_polynomial();  // the others read the rolled-back step until x steps again
   write_outputs(x, tau);
   write_states(x, tau, x.yfull.data());
   for (size_t i = 0; i < x.states.size(); ++i) NV_Ith_S(x.session->y(), i) = x.yfull[x.states[i]];
