@@ -18,8 +18,9 @@
 // Environment: BENCH_MAXORD=q limits the BDF order,
 // BENCH_STALD=1 switches on CVODES' stability limit detection (both measured, not adopted),
 // BENCH_INTEGRATOR=name selects the integrator ([simulation] integrator names: erk_dp5, ...),
-// BENCH_THREADS, BENCH_WINDOW_MS, BENCH_WINDOW_ORDER the partitioned run's threads and window
-// (SolverOptions::threads, window_ms, window_order), BENCH_ATOL_UNITS="1=1e-6,mV=1e-5" the
+// BENCH_THREADS, BENCH_WINDOW_MS, BENCH_WINDOW_ORDER, BENCH_LOOK_AHEAD the partitioned run's
+// threads and window (SolverOptions::threads, window_ms, window_order, window_look_ahead),
+// BENCH_ATOL_UNITS="1=1e-6,mV=1e-5" the
 // absolute tolerances by unit (SolverOptions::atol_by_unit). CPU s is the process's, all threads.
 #include <algorithm>
 #include <chrono>
@@ -51,6 +52,7 @@ int main(int argc, char** argv) {
   if (std::getenv("BENCH_STALD")) so.stability_limit_detection = true;
   if (const char* e = std::getenv("BENCH_THREADS")) so.threads = std::atoi(e);
   if (const char* e = std::getenv("BENCH_WINDOW_MS")) so.window_ms = std::atof(e);
+  if (const char* e = std::getenv("BENCH_LOOK_AHEAD")) so.window_look_ahead = std::atoi(e);
   if (const char* e = std::getenv("BENCH_WINDOW_ORDER")) so.window_order = std::atoi(e);
   if (const char* e = std::getenv("BENCH_ATOL_UNITS")) {  // "1=1e-5,mV=1e-4"
     for (std::string item, rest = e; !rest.empty();) {

@@ -5,12 +5,14 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <deque>
 #include <exception>
 #include <memory>
 #include <sstream>
+#include <thread>
 
 #include "common/error.hpp"
 #include "solver/command_schedule.hpp"
@@ -28,8 +30,29 @@ using model::kJacobianChunk;
 namespace {
 
 constexpr int kMaxOrder = 12;  // Adams' maximum; BDF stops at 5
+constexpr long kGridBatch = 8;  // windows per call of Partitioned::advance_on_grid
 
 struct Run;
+
+// Taylor coefficients c[d * stride + e] of entry e at a point, evaluated dt after it.
+double horner(const std::vector<double>& c, size_t stride, size_t e, int order, double dt) {
+  double v = c[static_cast<size_t>(order) * stride + e];
+  for (int d = order - 1; d >= 0; --d) v = v * dt + c[static_cast<size_t>(d) * stride + e];
+  return v;
+}
+
+// A part's polynomial of its exported states as another part reads it during a window: taken
+// at the window's start, extrapolated at most to extrapolation_order beyond its last step.
+struct Snapshot {
+  double t_poly = 0.0;
+  int order = 0, extrapolation_order = 0;
+  std::vector<double> coef;  // as PartSolver::coef, orders 0..order
+
+  double value(size_t n_exports, size_t e, double at) const {
+    const double dt = at - t_poly;
+    return horner(coef, n_exports, e, dt > 0.0 ? extrapolation_order : order, dt);
+  }
+};
 
 // One part's integrator and the polynomial through which the other parts read its angles.
 struct PartSolver {
@@ -63,12 +86,10 @@ struct PartSolver {
   std::vector<size_t> root_state;     // their local state indices
   std::vector<size_t> pending_events; // events whose state this part has not yet passed
 
-  // Windowed runs (SolverOptions::threads >= 2): the polynomial the others read during the
-  // window (this part's at the window's start), its steps since the earliest time still read,
-  // the roots found in the window (own states only) and a failure to rethrow after it.
-  double snap_t_poly = 0.0;
-  int snap_order = 0, snap_extrapolation_order = 0;
-  std::vector<double> snap_coef;
+  // Windowed runs (SolverOptions::threads >= 2): per part, what this part reads of it during
+  // its present window (its owners only); its steps since the earliest time still read, the
+  // roots found in the window (own states only) and a failure to rethrow after it.
+  std::vector<Snapshot> in_snap;
   StepHistory history;
   std::vector<double> y0, f0;  // record_step's buffers
   std::vector<Event> found_in_window;
@@ -76,13 +97,22 @@ struct PartSolver {
   long window_steps = 0;    // steps in its last window: the forecast of its next one's cost
   std::exception_ptr failure;
 
-  double export_value(size_t e, double at) const;
+  // Windowed runs on the grid of windows (Partitioned::advance_on_grid): window j of this part
+  // as the run takes it when every part has completed j, kept in a ring of windows[j % size]
+  // so that the part can complete later windows first.
+  struct Window {
+    double t = 0.0;  // where it stood at the window's end: its first step end at or past it
+    Snapshot poly;   // what its readers read in the next window
+    std::vector<Event> found;
+    long steps = 0;
+  };
+  std::vector<Window> windows;
+  std::atomic<long> last_window{0};  // the last window it completed (release: windows[] written)
+  std::atomic<bool> busy{false};     // a thread is stepping it
+  double t_real = 0.0;               // where its integrator stands; t is where the run has taken it
+  std::vector<size_t> owners;        // the parts it reads
 
-  static double horner(const std::vector<double>& c, size_t stride, size_t e, int order, double dt) {
-    double v = c[static_cast<size_t>(order) * stride + e];
-    for (int d = order - 1; d >= 0; --d) v = v * dt + c[static_cast<size_t>(d) * stride + e];
-    return v;
-  }
+  double export_value(size_t e, double at) const;
 
   void flush_polynomial() {
     if (polynomial_stale) update_polynomial();
@@ -126,11 +156,11 @@ struct PartSolver {
   }
 
   // What the others read in the coming window: the present polynomial.
-  void take_snapshot(int extrapolation_order) {
-    snap_t_poly = t_poly;
-    snap_order = order;
-    snap_extrapolation_order = std::min(order, extrapolation_order);
-    snap_coef.assign(coef.begin(), coef.begin() + static_cast<long>(static_cast<size_t>(order + 1) * exports.size()));
+  void take_snapshot(int extrapolation_order, Snapshot& snap) const {
+    snap.t_poly = t_poly;
+    snap.order = order;
+    snap.extrapolation_order = std::min(order, extrapolation_order);
+    snap.coef.assign(coef.begin(), coef.begin() + static_cast<long>(static_cast<size_t>(order + 1) * exports.size()));
   }
 };
 
@@ -143,18 +173,17 @@ struct Run {
 };
 
 double PartSolver::export_value(size_t e, double at) const {
-  const size_t ne = exports.size();
-  if (!run->windowed) return horner(coef, ne, e, order, at - t_poly);
-  const double dt = at - snap_t_poly;
-  return horner(snap_coef, ne, e, dt > 0.0 ? snap_extrapolation_order : snap_order, dt);
+  return horner(coef, exports.size(), e, order, at - t_poly);
 }
 
-// Own states from CVODES, inputs from their owners' polynomials at time t.
+// Own states from CVODES, inputs from their owners' polynomials at time t (windowed runs: from
+// the snapshots of the part's present window).
 template <class Scalar>
 void fill_inputs(const PartSolver& ps, double t, std::vector<Scalar>& full) {
   for (size_t i = 0; i < ps.inputs.size(); ++i) {
     const auto& [owner, e] = ps.input_from[i];
-    full[ps.inputs[i]] = Scalar(ps.run->parts[owner]->export_value(e, t));
+    const PartSolver& o = *ps.run->parts[owner];
+    full[ps.inputs[i]] = Scalar(ps.run->windowed ? ps.in_snap[owner].value(o.exports.size(), e, t) : o.export_value(e, t));
   }
 }
 
@@ -234,6 +263,12 @@ void build_parts(Run& run, const model::OdeModel& model, const model::ModelParti
       if (at == owner.exports.end()) at = owner.exports.insert(owner.exports.end(), local);
       ps->input_from.emplace_back(part_of[g], static_cast<size_t>(at - owner.exports.begin()));
     }
+  for (auto& ps : run.parts) {
+    for (const auto& from : ps->input_from) ps->owners.push_back(from.first);
+    std::sort(ps->owners.begin(), ps->owners.end());
+    ps->owners.erase(std::unique(ps->owners.begin(), ps->owners.end()), ps->owners.end());
+    ps->in_snap.resize(run.parts.size());
+  }
   for (size_t r = 0; r < roots.size(); ++r) {
     PartSolver& ps = *run.parts[part_of.at(roots[r].state)];
     ps.roots.push_back(r);
@@ -346,7 +381,15 @@ class Partitioned {
   // Windowed runs (SolverOptions::threads >= 2): every part behind the window's end steps to
   // it, concurrently, reading the others' snapshots; its roots are merged after the window.
   double advance_window(CommandSchedule& s);
-  void step_until(PartSolver& ps, const CommandSchedule& s, double t1) const;
+  long step_until(PartSolver& ps, const CommandSchedule& s, double t1, std::vector<Event>& found) const;
+  // Windowed runs without triggers: windows on a fixed grid, each part completing them on its
+  // own, as soon as the parts it reads have completed the one before (look-ahead).
+  double advance_on_grid(CommandSchedule& s);
+  void extend_window_ends(const CommandSchedule& s, long upto);
+  void work_on_grid(const CommandSchedule& s, long K);
+  PartSolver* claim_part(long K);
+  bool completed(long k) const;
+  void run_window(PartSolver& ps, const CommandSchedule& s) const;
   void write_states(PartSolver& ps, double t, double* row) const;
   void write_outputs(PartSolver& ps, double up_to);
   // With an output sink: the row of output k and how many parts have written it.
@@ -379,6 +422,10 @@ class Partitioned {
   PartSolver* stepped_ = nullptr;   // the part of the last advance
   WindowPool pool_;                 // windowed runs' worker threads
   std::vector<PartSolver*> todo_, claim_;  // a window's parts, in part and in claim order
+  bool on_grid_ = false;        // windowed, without triggers (whose commands roll parts back)
+  long window_ = 0;             // grid runs: the last window every part has completed
+  std::vector<double> ends_;    // grid runs: ends_[j] is the end of window j (ends_[0]: the start)
+  std::atomic<bool> failed_{false};
   int flag_ = 0;
   std::vector<int> found_;
 };
@@ -388,6 +435,14 @@ Partitioned::Partitioned(Run& run, const model::OdeModel& model, const SolverOpt
                          const std::vector<double>& y0, SolveResult& res)
     : run_(run), model_(model), options_(options), output_times_(output_times), n_caller_roots_(n_caller_roots),
       res_(res), pool_(run.windowed ? options.threads : 1) {
+  on_grid_ = run.windowed && model.triggers().empty();
+  if (on_grid_) {
+    ends_.assign(1, 0.0);
+    for (auto& ps : run.parts) {
+      ps->windows.resize(static_cast<size_t>(kGridBatch + std::max(options.window_look_ahead, 0)) + 2);
+      ps->take_snapshot(options.window_order, ps->windows[0].poly);
+    }
+  }
   const size_t n = model.num_states(), n_out = output_times.size();
   res.n_states = n;
   if (options.output_sink) {
@@ -438,7 +493,7 @@ void Partitioned::step_failed(const PartSolver& ps, double tret, int flag, bool 
 }
 
 double Partitioned::advance(CommandSchedule& s) {
-  if (run_.windowed) return advance_window(s);
+  if (run_.windowed) return on_grid_ ? advance_on_grid(s) : advance_window(s);
   stepped_ = lagging(s);
   if (!stepped_) throw Error("internal: partitioned run advanced with every part at its stop");
   PartSolver& ps = *stepped_;
@@ -482,7 +537,7 @@ double Partitioned::advance_window(CommandSchedule& s) {
   for (size_t id : deferred_) t_keep = std::min(t_keep, res_.events[id].t);
   todo_.clear();
   for (auto& ps : run_.parts) {
-    ps->take_snapshot(options_.window_order);
+    for (size_t q : ps->owners) run_.parts[q]->take_snapshot(options_.window_order, ps->in_snap[q]);
     // Steps ending before t_keep are never read again (outputs, events and roll-backs come later).
     ps->history.drop_before(t_keep);
     if (ps->t < t1) todo_.push_back(ps.get());
@@ -494,10 +549,12 @@ double Partitioned::advance_window(CommandSchedule& s) {
   std::stable_sort(claim_.begin(), claim_.end(),
                    [](const PartSolver* a, const PartSolver* b) { return a->window_steps > b->window_steps; });
   pool_.run(static_cast<int>(claim_.size()), [&](int i) {
+    PartSolver& ps = *claim_[i];
     try {
-      step_until(*claim_[i], s, t1);
+      ps.window_steps = step_until(ps, s, t1, ps.found_in_window);
+      ps.update_polynomial();  // what the others read in the next window
     } catch (...) {
-      claim_[i]->failure = std::current_exception();
+      ps.failure = std::current_exception();
     }
   });
   for (PartSolver* ps : todo_)
@@ -511,19 +568,153 @@ double Partitioned::advance_window(CommandSchedule& s) {
   return reached;
 }
 
-// One part to t1 (or its stop) on the calling thread; touches only ps and its session.
-void Partitioned::step_until(PartSolver& ps, const CommandSchedule& s, double t1) const {
+// One part on the calling thread until it reaches t1 (or its stop), its roots into `found`; the
+// number of steps. Touches only ps and its session.
+long Partitioned::step_until(PartSolver& ps, const CommandSchedule& s, double t1, std::vector<Event>& found) const {
   const size_t n = model_.num_states();
-  ps.window_steps = 0;
+  long steps = 0;
   while (ps.t < t1) {
     double tret = ps.t;
     const bool continues = !ps.restart_pending && ps.history.continues_at(ps.t);
     const int flag = step_once(ps, s, tret);
-    step_roots(ps, flag, tret, n, ps.found, [&](Event e) { ps.found_in_window.push_back(std::move(e)); });
+    step_roots(ps, flag, tret, n, ps.found, [&](Event e) { found.push_back(std::move(e)); });
     ps.record_step(continues);
-    ++ps.window_steps;
+    ++steps;
   }
-  ps.update_polynomial();  // what the others read in the next window
+  return steps;
+}
+
+// The windows of every part up to K (at most kGridBatch past the last one taken, and not past
+// the next stop), then their events, window by window in part order. The parts' windows are
+// claimed by whichever thread is free: the window j of a part whose readers have completed
+// j - 1, the earliest first; a part may go up to window_look_ahead windows past K while
+// another still steps before K. A part's window j reads only the polynomials of the parts it
+// reads at the end of j - 1, so the numbers do not depend on which windows were completed
+// first, nor on the thread count or timing. (Taking several windows per call spares the
+// threads a hand-over per window: the events, outputs and snapshots in between are serial.)
+double Partitioned::advance_on_grid(CommandSchedule& s) {
+  const long k0 = window_ + 1;
+  extend_window_ends(s, k0 + kGridBatch - 1 + options_.window_look_ahead);
+  const long last = static_cast<long>(ends_.size()) - 1;
+  if (last < k0) throw Error("internal: windowed run advanced past its stop");
+  const long K = std::min(k0 + kGridBatch - 1, last);
+  double t_keep = INFINITY;
+  for (auto& ps : run_.parts) t_keep = std::min(t_keep, ps->t);
+  claim_.clear();
+  for (auto& ps : run_.parts) {
+    ps->history.drop_before(t_keep);  // steps ending before t_keep are never read again
+    claim_.push_back(ps.get());
+  }
+  std::stable_sort(claim_.begin(), claim_.end(),  // LPT, as in advance_window
+                   [](const PartSolver* a, const PartSolver* b) { return a->window_steps > b->window_steps; });
+  pool_.run(options_.threads, [&](int) { work_on_grid(s, K); });
+  for (auto& ps : run_.parts)
+    if (ps->failure) std::rethrow_exception(ps->failure);
+  const size_t ring = run_.parts.front()->windows.size();
+  for (long k = k0; k <= K; ++k) {  // as if the parts had just completed window k
+    const size_t slot = static_cast<size_t>(k) % ring;
+    for (auto& ps : run_.parts) {
+      ps->t = ps->windows[slot].t;
+      ps->window_steps = ps->windows[slot].steps;
+    }
+    for (auto& ps : run_.parts) {
+      for (Event& e : ps->windows[slot].found) add_event(*ps, std::move(e));
+      ps->windows[slot].found.clear();
+    }
+  }
+  window_ = K;
+  double reached = INFINITY;
+  for (auto& ps : run_.parts) reached = std::min(reached, ps->t);
+  return reached;
+}
+
+// Each window ends at the next multiple of window_ms or at the next stop, whichever is first;
+// none is defined past the next stop until the run has passed it.
+void Partitioned::extend_window_ends(const CommandSchedule& s, long upto) {
+  const double w = options_.window_ms;
+  while (static_cast<long>(ends_.size()) <= upto && ends_.back() < s.next_stop()) {
+    double m = std::floor(ends_.back() / w) + 1.0;
+    if (m * w <= ends_.back()) m += 1.0;  // the division rounded up to a multiple
+    ends_.push_back(std::min(m * w, s.next_stop()));
+  }
+}
+
+void Partitioned::work_on_grid(const CommandSchedule& s, long K) {
+  while (!failed_.load()) {
+    PartSolver* ps = claim_part(K);
+    if (!ps) {
+      if (completed(K)) return;
+      std::this_thread::yield();
+      continue;
+    }
+    try {
+      run_window(*ps, s);
+    } catch (...) {
+      ps->failure = std::current_exception();
+      failed_ = true;
+    }
+    ps->busy.store(false, std::memory_order_release);
+  }
+}
+
+bool Partitioned::completed(long k) const {
+  for (auto& ps : run_.parts)
+    if (ps->last_window.load(std::memory_order_acquire) < k) return false;
+  return true;
+}
+
+// A part to step, now this thread's (busy): among those whose next window j is ready (every
+// part it reads has completed j - 1), the earliest j, parts the others read first (the further
+// they lead, the more of their readers' windows are ready); past K only while another part is
+// still before it, and at most window_look_ahead past it.
+PartSolver* Partitioned::claim_part(long K) {
+  const bool before_K = !completed(K);
+  auto next_ready = [&](const PartSolver& ps) -> long {
+    const long j = ps.last_window.load(std::memory_order_acquire) + 1;
+    if (j > K + (before_K ? options_.window_look_ahead : 0) || j >= static_cast<long>(ends_.size())) return -1;
+    for (size_t q : ps.owners)
+      if (run_.parts[q]->last_window.load(std::memory_order_acquire) < j - 1) return -1;
+    return j;
+  };
+  const bool ahead_first = options_.window_look_ahead_always;  // tests: the windows past K first
+  PartSolver* best = nullptr;
+  long best_j = 0;
+  for (PartSolver* ps : claim_) {
+    if (ps->busy.load(std::memory_order_relaxed)) continue;
+    const long j = next_ready(*ps);
+    if (j < 0) continue;
+    const bool read = !ps->exports.empty(), best_read = best && !best->exports.empty();
+    const bool earlier = ahead_first ? j > best_j : j < best_j;
+    if (!best || earlier || (j == best_j && read > best_read)) best = ps, best_j = j;
+  }
+  if (!best) return nullptr;
+  bool idle = false;
+  if (!best->busy.compare_exchange_strong(idle, true, std::memory_order_acquire)) return nullptr;
+  if (next_ready(*best) == best_j) return best;
+  best->busy.store(false, std::memory_order_release);  // another thread took that window meanwhile
+  return nullptr;
+}
+
+// The next window of ps (busy: this thread's), reading its owners' polynomials at the end of
+// the window before.
+void Partitioned::run_window(PartSolver& ps, const CommandSchedule& s) const {
+  const long j = ps.last_window.load(std::memory_order_relaxed) + 1;
+  const size_t ring = ps.windows.size();
+  for (size_t q : ps.owners) ps.in_snap[q] = run_.parts[q]->windows[static_cast<size_t>(j - 1) % ring].poly;
+  PartSolver::Window& w = ps.windows[static_cast<size_t>(j) % ring];
+  w.found.clear();
+  const double taken = ps.t;  // the run's, restored below; its integrator is at t_real
+  ps.t = ps.t_real;
+  w.steps = step_until(ps, s, ends_[static_cast<size_t>(j)], w.found);
+  if (w.steps > 0) {
+    ps.update_polynomial();
+    ps.take_snapshot(options_.window_order, w.poly);
+  } else {
+    w.poly = ps.windows[static_cast<size_t>(j - 1) % ring].poly;
+  }
+  w.t = ps.t_real = ps.t;
+  ps.t = taken;
+  ps.last_window.store(j, std::memory_order_release);
 }
 
 void Partitioned::handle_events(CommandSchedule& s) {
@@ -657,9 +848,13 @@ void Partitioned::roll_back(PartSolver& x, double tau) {
   while (x.next_out > first_out_ && output_times_[x.next_out - 1] > tau) --parts_done(--x.next_out);
 }
 
-long Partitioned::total_steps() const {
+long Partitioned::total_steps() const {  // grid runs: not those of windows still ahead
   long s = 0;
-  for (auto& ps : run_.parts) s += ps->session->total_steps();
+  for (auto& ps : run_.parts) {
+    s += ps->session->total_steps();
+    if (!on_grid_) continue;
+    for (long j = window_ + 1; j <= ps->last_window.load(); ++j) s -= ps->windows[static_cast<size_t>(j) % ps->windows.size()].steps;
+  }
   return s;
 }
 

@@ -89,6 +89,10 @@ struct SolverOptions {
   std::vector<std::pair<std::string, double>> atol_by_unit;
   double window_ms = 1.0;  // 0.25-1 ms are as accurate on the three legs; 4 ms is not (docs/benchmarks.md)
   int window_order = 3;
+  // Windowed runs without triggers: a part may complete up to this many windows ahead of the
+  // slowest, while a thread would otherwise wait (0: never). Changes no number.
+  int window_look_ahead = 16;
+  bool window_look_ahead_always = false;  // tests: step ahead even where no thread would wait
   bool progress = false;             // progress line on a terminal (stderr)
   // Set: output samples go to the sink as they are reached instead of into SolveResult
   // (plain runs without sensitivities; see SolveResult::t).

@@ -26,7 +26,8 @@ using namespace phasmid;
 
 namespace {
 
-solver::SolveResult run_three_legs(model::MotoneuronModel mn, int threads, double t_end) {
+solver::SolveResult run_three_legs(model::MotoneuronModel mn, int threads, double t_end, int look_ahead = 16,
+                                   bool always = false) {
   model::ThreeLegOptions t;
   t.motoneuron = mn;
   auto m = model::build_three_leg_model(t);
@@ -35,6 +36,8 @@ solver::SolveResult run_three_legs(model::MotoneuronModel mn, int threads, doubl
   o.integrator = mn == model::MotoneuronModel::Spiking ? solver::IntegratorKind::ErkDp5 : solver::IntegratorKind::Bdf;
   o.partitioning = solver::Partitioning::On;
   o.threads = threads;
+  o.window_look_ahead = look_ahead;
+  o.window_look_ahead_always = always;
   return solver::Simulator(*m, o).run(m->parameters().values(), solver::output_grid(t_end, 5.0),
                                       features::feature_roots(*m));
 }
@@ -65,6 +68,20 @@ TEST(WindowedPartitioned, SameNumbersForAnyThreadCount) {
     expect_bitwise_equal(two, run_three_legs(mn, 2, t_end), "2 threads, again");
     expect_bitwise_equal(two, run_three_legs(mn, 3, t_end), "3 threads");
     expect_bitwise_equal(two, run_three_legs(mn, 8, t_end), "8 threads");
+  }
+}
+
+// The parts that read no other (the three CTr joints) step ahead of the window while a thread
+// would otherwise wait; the steps they took ahead give the window the same numbers as steps
+// taken in it. Stepping them ahead always (not only when a thread is free) exercises that path
+// on any machine.
+TEST(WindowedPartitioned, StepsTakenAheadChangeNoNumber) {
+  for (auto mn : {model::MotoneuronModel::Rate, model::MotoneuronModel::Spiking}) {
+    const double t_end = mn == model::MotoneuronModel::Rate ? 2000.0 : 600.0;
+    const solver::SolveResult none = run_three_legs(mn, 2, t_end, 0);
+    expect_bitwise_equal(none, run_three_legs(mn, 2, t_end, 16, true), "2 threads, always 16 windows ahead");
+    expect_bitwise_equal(none, run_three_legs(mn, 3, t_end, 3, true), "3 threads, always 3 windows ahead");
+    expect_bitwise_equal(none, run_three_legs(mn, 2, t_end), "2 threads, ahead while a thread is free");
   }
 }
 
