@@ -386,6 +386,7 @@ class Partitioned {
   // own, as soon as the parts it reads have completed the one before (look-ahead).
   double advance_on_grid(CommandSchedule& s);
   void extend_window_ends(const CommandSchedule& s, long upto);
+  void take_windows(long k0, long K);
   void work_on_grid(const CommandSchedule& s, long K);
   PartSolver* claim_part(long K);
   bool completed(long k) const;
@@ -424,7 +425,13 @@ class Partitioned {
   std::vector<PartSolver*> todo_, claim_;  // a window's parts, in part and in claim order
   bool on_grid_ = false;        // windowed, without triggers (whose commands roll parts back)
   long window_ = 0;             // grid runs: the last window every part has completed
-  std::vector<double> ends_;    // grid runs: ends_[j] is the end of window j (ends_[0]: the start)
+  long look_ahead_ = 0;         // grid runs: SolverOptions::window_look_ahead, at least 0
+  // Grid runs: the ends of windows ends_base_ ... (window 0's end is the run's start); the
+  // windows before the last one taken are dropped.
+  std::deque<double> ends_;
+  long ends_base_ = 0;
+  double window_end(long j) const { return ends_[static_cast<size_t>(j - ends_base_)]; }
+  long windows_defined() const { return ends_base_ + static_cast<long>(ends_.size()); }
   std::atomic<bool> failed_{false};
   int flag_ = 0;
   std::vector<int> found_;
@@ -436,10 +443,11 @@ Partitioned::Partitioned(Run& run, const model::OdeModel& model, const SolverOpt
     : run_(run), model_(model), options_(options), output_times_(output_times), n_caller_roots_(n_caller_roots),
       res_(res), pool_(run.windowed ? options.threads : 1) {
   on_grid_ = run.windowed && model.triggers().empty();
+  look_ahead_ = std::max(options.window_look_ahead, 0);
   if (on_grid_) {
     ends_.assign(1, 0.0);
     for (auto& ps : run.parts) {
-      ps->windows.resize(static_cast<size_t>(kGridBatch + std::max(options.window_look_ahead, 0)) + 2);
+      ps->windows.resize(static_cast<size_t>(kGridBatch + look_ahead_) + 2);
       ps->take_snapshot(options.window_order, ps->windows[0].poly);
     }
   }
@@ -586,16 +594,16 @@ long Partitioned::step_until(PartSolver& ps, const CommandSchedule& s, double t1
 
 // The windows of every part up to K (at most kGridBatch past the last one taken, and not past
 // the next stop), then their events, window by window in part order. The parts' windows are
-// claimed by whichever thread is free: the window j of a part whose readers have completed
-// j - 1, the earliest first; a part may go up to window_look_ahead windows past K while
+// claimed by whichever thread is free: the window j of a part whose owners (the parts it
+// reads) have completed j - 1, the earliest first; a part may go up to window_look_ahead windows past K while
 // another still steps before K. A part's window j reads only the polynomials of the parts it
 // reads at the end of j - 1, so the numbers do not depend on which windows were completed
 // first, nor on the thread count or timing. (Taking several windows per call spares the
 // threads a hand-over per window: the events, outputs and snapshots in between are serial.)
 double Partitioned::advance_on_grid(CommandSchedule& s) {
   const long k0 = window_ + 1;
-  extend_window_ends(s, k0 + kGridBatch - 1 + options_.window_look_ahead);
-  const long last = static_cast<long>(ends_.size()) - 1;
+  extend_window_ends(s, k0 + kGridBatch - 1 + look_ahead_);
+  const long last = windows_defined() - 1;
   if (last < k0) throw Error("internal: windowed run advanced past its stop");
   const long K = std::min(k0 + kGridBatch - 1, last);
   double t_keep = INFINITY;
@@ -610,8 +618,17 @@ double Partitioned::advance_on_grid(CommandSchedule& s) {
   pool_.run(options_.threads, [&](int) { work_on_grid(s, K); });
   for (auto& ps : run_.parts)
     if (ps->failure) std::rethrow_exception(ps->failure);
+  take_windows(k0, K);
+  double reached = INFINITY;
+  for (auto& ps : run_.parts) reached = std::min(reached, ps->t);
+  return reached;
+}
+
+// Windows k0 ... K into the run, each as if every part had just completed it: the parts' times,
+// then the roots in part order.
+void Partitioned::take_windows(long k0, long K) {
   const size_t ring = run_.parts.front()->windows.size();
-  for (long k = k0; k <= K; ++k) {  // as if the parts had just completed window k
+  for (long k = k0; k <= K; ++k) {
     const size_t slot = static_cast<size_t>(k) % ring;
     for (auto& ps : run_.parts) {
       ps->t = ps->windows[slot].t;
@@ -623,16 +640,17 @@ double Partitioned::advance_on_grid(CommandSchedule& s) {
     }
   }
   window_ = K;
-  double reached = INFINITY;
-  for (auto& ps : run_.parts) reached = std::min(reached, ps->t);
-  return reached;
+  while (ends_base_ < K) {  // window K's end stays: it is where window K + 1 starts
+    ends_.pop_front();
+    ++ends_base_;
+  }
 }
 
 // Each window ends at the next multiple of window_ms or at the next stop, whichever is first;
 // none is defined past the next stop until the run has passed it.
 void Partitioned::extend_window_ends(const CommandSchedule& s, long upto) {
   const double w = options_.window_ms;
-  while (static_cast<long>(ends_.size()) <= upto && ends_.back() < s.next_stop()) {
+  while (windows_defined() <= upto && ends_.back() < s.next_stop()) {
     double m = std::floor(ends_.back() / w) + 1.0;
     if (m * w <= ends_.back()) m += 1.0;  // the division rounded up to a multiple
     ends_.push_back(std::min(m * w, s.next_stop()));
@@ -671,7 +689,7 @@ PartSolver* Partitioned::claim_part(long K) {
   const bool before_K = !completed(K);
   auto next_ready = [&](const PartSolver& ps) -> long {
     const long j = ps.last_window.load(std::memory_order_acquire) + 1;
-    if (j > K + (before_K ? options_.window_look_ahead : 0) || j >= static_cast<long>(ends_.size())) return -1;
+    if (j > K + (before_K ? look_ahead_ : 0) || j >= windows_defined()) return -1;
     for (size_t q : ps.owners)
       if (run_.parts[q]->last_window.load(std::memory_order_acquire) < j - 1) return -1;
     return j;
@@ -705,7 +723,7 @@ void Partitioned::run_window(PartSolver& ps, const CommandSchedule& s) const {
   w.found.clear();
   const double taken = ps.t;  // the run's, restored below; its integrator is at t_real
   ps.t = ps.t_real;
-  w.steps = step_until(ps, s, ends_[static_cast<size_t>(j)], w.found);
+  w.steps = step_until(ps, s, window_end(j), w.found);
   if (w.steps > 0) {
     ps.update_polynomial();
     ps.take_snapshot(options_.window_order, w.poly);

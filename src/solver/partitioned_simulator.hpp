@@ -23,8 +23,12 @@
 // at the window's start, and records each step's end values and derivatives
 // (solver/step_history.hpp), by which its states at the others' events, at outputs and at
 // roll-backs are found after the window; the polynomial the others read next is taken once, at
-// its last step in the window. The numbers depend
-// on the window, not on the thread count or timing; threads = 1 is the scheduler above.
+// its last step in the window. Without triggers the windows lie on a fixed grid and a part may
+// complete later windows as soon as the parts it reads have completed the ones before, while
+// another part is still behind (SolverOptions::window_look_ahead); with triggers, whose
+// commands send parts back, every part completes one window before any starts the next. The
+// numbers depend on the windows, not on the thread count or timing; threads = 1 is the
+// scheduler above.
 //
 // Not for forward sensitivities (Simulator::run then integrates the whole model as one
 // system); SolverOptions::partitioning chooses; docs/benchmarks.md compares the two.
