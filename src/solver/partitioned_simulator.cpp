@@ -595,10 +595,10 @@ long Partitioned::step_until(PartSolver& ps, const CommandSchedule& s, double t1
 // The windows of every part up to K (at most kGridBatch past the last one taken, and not past
 // the next stop), then their events, window by window in part order. The parts' windows are
 // claimed by whichever thread is free: the window j of a part whose owners (the parts it
-// reads) have completed j - 1, the earliest first; a part may go up to window_look_ahead windows past K while
-// another still steps before K. A part's window j reads only the polynomials of the parts it
-// reads at the end of j - 1, so the numbers do not depend on which windows were completed
-// first, nor on the thread count or timing. (Taking several windows per call spares the
+// reads) have completed j - 1, the earliest first; a part may go up to window_look_ahead
+// windows past K while another still steps before K. A part's window j reads only its owners'
+// polynomials at the end of j - 1, so the numbers do not depend on which windows were
+// completed first, nor on the thread count or timing. (Several windows per call spare the
 // threads a hand-over per window: the events, outputs and snapshots in between are serial.)
 double Partitioned::advance_on_grid(CommandSchedule& s) {
   const long k0 = window_ + 1;
