@@ -20,8 +20,8 @@
 // BENCH_INTEGRATOR=name selects the integrator ([simulation] integrator names: erk_dp5, ...),
 // BENCH_THREADS, BENCH_WINDOW_MS, BENCH_WINDOW_ORDER, BENCH_LOOK_AHEAD the partitioned run's
 // threads and window (SolverOptions::threads, window_ms, window_order, window_look_ahead),
-// BENCH_ATOL_UNITS="1=1e-6,mV=1e-5" the
-// absolute tolerances by unit (SolverOptions::atol_by_unit). CPU s is the process's, all threads.
+// BENCH_ATOL_UNITS="1=1e-6,mV=1e-5" the absolute tolerances by unit
+// (SolverOptions::atol_by_unit). CPU s is the process's, all threads.
 #include <algorithm>
 #include <chrono>
 #include <cmath>

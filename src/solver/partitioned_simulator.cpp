@@ -378,8 +378,9 @@ class Partitioned {
   [[noreturn]] void step_failed(const PartSolver& ps, double tret, int flag, bool too_much_work) const;
   void take_roots(PartSolver& ps, double tret);
   void add_event(PartSolver& ps, Event e);
-  // Windowed runs (SolverOptions::threads >= 2): every part behind the window's end steps to
-  // it, concurrently, reading the others' snapshots; its roots are merged after the window.
+  // Windowed runs (SolverOptions::threads >= 2) with triggers: every part behind the window's
+  // end steps to it, concurrently, reading the others' snapshots; its roots are merged after
+  // the window.
   double advance_window(CommandSchedule& s);
   long step_until(PartSolver& ps, const CommandSchedule& s, double t1, std::vector<Event>& found) const;
   // Windowed runs without triggers: windows on a fixed grid, each part completing them on its
