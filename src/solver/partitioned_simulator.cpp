@@ -372,6 +372,8 @@ class Partitioned {
 
  private:
   PartSolver* lagging(const CommandSchedule& s) const;
+  // The time of the part furthest behind: every part has reached it.
+  double earliest_time() const;
   // One step of ps towards the next stop (restarting it first if a command asked for it); its
   // flag, with tret the time it returned and ps.t the time reached. Touches only ps.
   int step_once(PartSolver& ps, const CommandSchedule& s, double& tret) const;
@@ -539,9 +541,14 @@ void Partitioned::add_event(PartSolver& ps, Event e) {
   }
 }
 
+double Partitioned::earliest_time() const {
+  double t = INFINITY;
+  for (auto& ps : run_.parts) t = std::min(t, ps->t);
+  return t;
+}
+
 double Partitioned::advance_window(CommandSchedule& s) {
-  double t_keep = INFINITY;
-  for (auto& ps : run_.parts) t_keep = std::min(t_keep, ps->t);
+  double t_keep = earliest_time();
   const double t1 = std::min(t_keep + options_.window_ms, s.next_stop());
   for (size_t id : deferred_) t_keep = std::min(t_keep, res_.events[id].t);
   todo_.clear();
@@ -572,9 +579,7 @@ double Partitioned::advance_window(CommandSchedule& s) {
     for (Event& e : ps->found_in_window) add_event(*ps, std::move(e));
     ps->found_in_window.clear();
   }
-  double reached = INFINITY;
-  for (auto& ps : run_.parts) reached = std::min(reached, ps->t);
-  return reached;
+  return earliest_time();
 }
 
 // One part on the calling thread until it reaches t1 (or its stop), its roots into `found`; the
@@ -607,8 +612,7 @@ double Partitioned::advance_on_grid(CommandSchedule& s) {
   const long last = windows_defined() - 1;
   if (last < k0) throw Error("internal: windowed run advanced past its stop");
   const long K = std::min(k0 + kGridBatch - 1, last);
-  double t_keep = INFINITY;
-  for (auto& ps : run_.parts) t_keep = std::min(t_keep, ps->t);
+  const double t_keep = earliest_time();
   claim_.clear();
   for (auto& ps : run_.parts) {
     ps->history.drop_before(t_keep);  // steps ending before t_keep are never read again
@@ -620,9 +624,7 @@ double Partitioned::advance_on_grid(CommandSchedule& s) {
   for (auto& ps : run_.parts)
     if (ps->failure) std::rethrow_exception(ps->failure);
   take_windows(k0, K);
-  double reached = INFINITY;
-  for (auto& ps : run_.parts) reached = std::min(reached, ps->t);
-  return reached;
+  return earliest_time();
 }
 
 // Windows k0 ... K into the run, each as if every part had just completed it: the parts' times,
@@ -819,8 +821,7 @@ void Partitioned::write_pending_events(PartSolver& ps) {
 }
 
 void Partitioned::feed_triggers(CommandSchedule& s) {
-  double t_min = INFINITY;
-  for (auto& x : run_.parts) t_min = std::min(t_min, x->t);
+  const double t_min = earliest_time();
   for (;;) {
     auto next = std::min_element(deferred_.begin(), deferred_.end(),
                                  [&](size_t a, size_t b) { return res_.events[a].t < res_.events[b].t; });
