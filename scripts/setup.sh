@@ -27,7 +27,15 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+# SUNDIALS from Debian's source package, built with optimisation (Debian's binary package is
+# -O0; scripts/build_sundials.sh says why). Without it, Debian's libraries: same numbers, slower.
+if bash scripts/build_sundials.sh; then
+  SUNDIALS_ARG=(-DSUNDIALS_DIR="$PWD/build/sundials/install/lib/cmake/sundials")
+else
+  echo "phasmid setup: WARNING: no optimised SUNDIALS build; using Debian's -O0 libraries (same numbers, slower)" >&2
+  SUNDIALS_ARG=(-USUNDIALS_DIR)
+fi
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${SUNDIALS_ARG[@]}" >/dev/null
 cmake --build build -j"$(nproc)"
 
 # The Python module (docs/python.md): a .pth file in Debian's Python's site-packages points

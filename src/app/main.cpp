@@ -7,6 +7,7 @@
 #include "build_info.hpp"
 #include "dist/executor.hpp"
 #include "dist/session.hpp"
+#include "solver/sundials_library.hpp"
 
 namespace phasmid::app {
 std::vector<Verb>& verbs() {
@@ -46,7 +47,8 @@ int main(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) g_command_line += (i ? " " : "") + std::string(argv[i]);
 
   CLI::App app{"phasmid: simulation, sensitivities, fits and sweeps of the stick-insect walking model"};
-  app.set_version_flag("--version", std::string(PHASMID_VERSION) + " (" + phasmid::dist::mpi_description() + ")");
+  app.set_version_flag("--version", std::string(PHASMID_VERSION) + " (" + phasmid::dist::mpi_description() + "; " +
+                                         phasmid::solver::sundials_description() + ")");
   app.require_subcommand(1);
   // Usage errors in one line, like every other error (docs/cli.md).
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
