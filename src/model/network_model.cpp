@@ -5,6 +5,7 @@
 
 #include "common/error.hpp"
 #include "common/units.hpp"
+#include "model/compiled_rhs.hpp"
 
 namespace phasmid::model {
 
@@ -105,11 +106,17 @@ struct DisjointSets {
 class NetworkPart final : public OdeModelPart {
  public:
   NetworkPart(const NetworkModel& m, NetworkComponents c) : model_(m), comp_(std::move(c)) {}
+  bool compile(std::string* why) override {
+    compiled_ = compile_rhs(model_.rhs_source(comp_, "phasmid_rhs"), "phasmid_rhs", why);
+    ctx_ = {static_cast<void (*)(const double*, double*, size_t)>(exp_each), &NetworkModel::joint_acceleration_of, &model_};
+    return compiled_ != nullptr;
+  }
   void bind(const double* p) override {
     model_.bind_neurons(comp_, p, bound_);
     bound_p_ = p;
   }
   void rhs(double t, const double* y, const double* p, double* ydot) const override {
+    if (compiled_) return compiled_(t, y, p, ydot, &ctx_);
     model_.eval_components(comp_, t, y, p, ydot, p == bound_p_ ? &bound_ : nullptr);
   }
   void rhs(double t, const JetK* y, const JetK* p, JetK* ydot) const override {
@@ -121,6 +128,8 @@ class NetworkPart final : public OdeModelPart {
   NetworkComponents comp_;
   BoundNeuronParams bound_;
   const double* bound_p_ = nullptr;  // the vector bound_ was gathered from
+  PhasmidRhsFn compiled_ = nullptr;
+  PhasmidRhsContext ctx_{};
 };
 }  // namespace
 

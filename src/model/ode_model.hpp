@@ -53,6 +53,13 @@ class OdeModelPart {
   virtual void bind(const double* p) { (void)p; }
   virtual void rhs(double t, const double* y, const double* p, double* ydot) const = 0;
   virtual void rhs(double t, const JetK* y, const JetK* p, JetK* ydot) const = 0;
+  // From now on the double rhs runs code compiled for this part alone (model/compiled_rhs.hpp,
+  // SolverOptions::compiled_rhs), returning the same values. False, with the reason in *why,
+  // where the model kind has no such code or it could not be compiled: the part stays as it was.
+  virtual bool compile(std::string* why) {
+    if (why) *why = "this model kind has no compiled right-hand side";
+    return false;
+  }
 };
 
 struct StateInfo {
