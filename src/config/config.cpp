@@ -78,7 +78,7 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
                 " (its own parameters set the run; docs/config.md)");
   check_keys(cfg, *st, "simulation", {"t_end_ms", "output_dt_ms", "discard_ms", "rtol", "atol", "linear_solver", "max_step_ms",
                                               "partitioned", "integrator", "threads", "thread_window_ms", "atol_by_unit",
-                                              "stiff_part_tol"});
+                                              "stiff_part_tol", "compiled_rhs"});
   auto get = [&](const char* key, double& out, double lo) {
     if (const toml::node* n = st->get(key)) {
       out = number(cfg, *n, key);
@@ -136,6 +136,10 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
     if (s.solver.partitioning == solver::Partitioning::Neurons && s.solver.threads >= 2)
       throw Error(where(cfg, *n) + ": 'partitioned = \"neurons\"' runs on one thread (threads = 1): " +
                   solver::kNeuronsOnOneThread);
+  }
+  if (const toml::node* n = st->get("compiled_rhs")) {
+    if (!n->is_boolean()) throw Error(where(cfg, *n) + ": 'compiled_rhs' must be true or false");
+    s.solver.compiled_rhs = *n->value<bool>();
   }
   return s;
 }

@@ -230,7 +230,7 @@ int part_roots(sunrealtype, N_Vector y, sunrealtype* g, void* ud) {
 
 // The parts of P with their equations, who reads whose exports, and which roots each watches.
 void build_parts(Run& run, const model::OdeModel& model, const model::ModelPartition& P,
-                 const std::vector<RootSpec>& roots) {
+                 const std::vector<RootSpec>& roots, const SolverOptions& options) {
   const size_t n = model.num_states();
   std::vector<size_t> part_of(n), local_of(n);
   for (size_t k = 0; k < P.size(); ++k)
@@ -249,6 +249,7 @@ void build_parts(Run& run, const model::OdeModel& model, const model::ModelParti
     ps->eq = model.make_part(P, k);
     if (!ps->eq) throw Error("internal: model " + model.kind() + " has no equations for part " + ps->name);
     ps->eq->bind(run.p->data());
+    compile_if_asked(ps->eq.get(), options);
     ps->yfull.assign(n, 0.0);
     ps->ffull.assign(n, 0.0);
     ps->yK.assign(n, JetK(0.0));
@@ -936,7 +937,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
   run.p = &schedule.p();
   run.roots = &roots;
   for (double v : schedule.p()) run.pK.emplace_back(v);
-  build_parts(run, model, P, roots);
+  build_parts(run, model, P, roots, options);
   start_sessions(run, model, contexts, options, y0, schedule.next_stop());
 
   SolveResult res;

@@ -7,6 +7,8 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdio>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -21,6 +23,15 @@
 #include "solver/run_loop.hpp"
 
 namespace phasmid::solver {
+
+void compile_if_asked(model::OdeModelPart* part, const SolverOptions& options) {
+  if (!options.compiled_rhs) return;
+  std::string why = "this model kind has no compiled right-hand side";
+  if (part && part->compile(&why)) return;
+  static std::atomic<bool> warned{false};
+  if (!warned.exchange(true))
+    std::fprintf(stderr, "phasmid: warning: compiled_rhs: %s; the generic right-hand side runs instead\n", why.c_str());
+}
 using model::Jet1;
 using model::Jet4;
 using model::JetK;
@@ -519,6 +530,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const OutputTimes
   d.p = &schedule.p();
   d.eq = model_.make_whole();
   if (d.eq) d.eq->bind(d.p->data());
+  if (ns == 0) compile_if_asked(d.eq.get(), options_);
   d.roots = &all_roots;
   d.sens_params = sens_params;
   d.n = model_.num_states();

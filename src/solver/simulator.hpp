@@ -78,6 +78,10 @@ struct SolverOptions {
   // explicit method at rtol, atol. 1e-7: the study's loosest that keeps the single joint's
   // period within 0.002 ms of the reference (docs/benchmarks.md "Spiking cells apart").
   double stiff_part_tol = 1e-7;
+  // Plain runs: each part's double right-hand side compiled for it at the run's start
+  // (OdeModelPart::compile, model/compiled_rhs.hpp; cached, so once per model per machine),
+  // the same values at less cost. Where a model cannot, a warning and the generic evaluation.
+  bool compiled_rhs = false;
   // Partitioned runs only. 1: the sequential scheduler (the part furthest behind steps next).
   // >= 2: the parts step concurrently on that many threads in windows of window_ms, each
   // reading the others' angles from their polynomials at the window's start, extrapolated at
@@ -205,5 +209,10 @@ std::vector<double> jacobian_autodiff(const model::OdeModel& model, double t, co
 // (n_colors: how many directions that takes instead of n). Dense column-major, for tests.
 std::vector<double> jacobian_sparse_autodiff(const model::OdeModel& model, double t, const std::vector<double>& y,
                                              const std::vector<double>& p, size_t* n_colors = nullptr);
+
+// OdeModelPart::compile for a run that asks for it (SolverOptions::compiled_rhs); a part that
+// cannot be compiled (or a model without parts: nullptr) stays generic, with one warning per
+// process on stderr.
+void compile_if_asked(model::OdeModelPart* part, const SolverOptions& options);
 
 }  // namespace phasmid::solver

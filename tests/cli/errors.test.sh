@@ -53,6 +53,19 @@ expect_error "ratios bad angle" "not a number" "$PHASMID" ratios --joint fti --a
 expect_error "solver failure is reported" "CVODES failed" \
   "$PHASMID" simulate "$SRC/configs/fti_mechanical.toml" --set middle.fti.l_E0=0.1 -o "$tmp/d.h5" -q
 [ -e "$tmp/d.h5" ] && { echo "FAIL: output left after solver failure"; fail=$((fail+1)); }
+# compiled_rhs where it cannot be had: one warning line, the run completes with the generic
+# right-hand side (a model kind without generated code; a cache directory that cannot be made).
+printf '[model]\ntype = "mechanical_joint"\n[simulation]\nt_end_ms = 50\ncompiled_rhs = true\n' >"$tmp/cr.toml"
+if "$PHASMID" simulate "$tmp/cr.toml" -o "$tmp/cr.h5" -q 2>"$tmp/err" && [ "$(wc -l <"$tmp/err")" -eq 1 ] \
+   && grep -q "warning: compiled_rhs: this model kind has no compiled right-hand side" "$tmp/err"; then pass=$((pass+1))
+else echo "FAIL: compiled_rhs on a mechanical joint ($(cat "$tmp/err"))"; fail=$((fail+1)); fi
+sed -e 's/^t_end_ms *=.*/t_end_ms = 100/' -e 's/^discard_ms *=.*/discard_ms = 0/' "$SRC/configs/single_joint_fti.toml" >"$tmp/sj.toml"
+"$PHASMID" simulate "$tmp/sj.toml" -o "$tmp/sj.h5" -q
+sed -i 's/^\[simulation\]/[simulation]\ncompiled_rhs = true/' "$tmp/sj.toml"
+if PHASMID_CACHE_DIR=/proc/phasmid-no-cache "$PHASMID" simulate "$tmp/sj.toml" -o "$tmp/sjc.h5" -q 2>"$tmp/err" \
+   && grep -q "warning: compiled_rhs: cannot create the cache directory /proc/phasmid-no-cache" "$tmp/err" \
+   && h5diff -q "$tmp/sj.h5" "$tmp/sjc.h5" /trajectory/states; then pass=$((pass+1))
+else echo "FAIL: compiled_rhs without a cache directory ($(cat "$tmp/err"))"; fail=$((fail+1)); fi
 # and the good path: ratios JSON carries the required fields
 out=$("$PHASMID" ratios --joint fti --angles 45,110 --json)
 echo "$out" | grep -q '"angle_deg": 45' && echo "$out" | grep -q '"ratio"' && echo "$out" | grep -q '"joint": "fti"' \
