@@ -9,6 +9,9 @@
 #   NEURONS_TOLS: rows with partitioned = "neurons" (Dormand-Prince on the motoneurons, muscles
 #   and mechanics at each of these tolerances, CVODES BDF on the CPG and interneurons at
 #   stiff_part_tol = NEURONS_STIFF_TOL; docs/solver.md "Integrators"); default "1e-4 1e-5", 1e-7.
+#   COMPILED_RHS=1 (default): the shipped row and the NEURONS_TOLS rows once more with
+#   compiled_rhs = true (model/compiled_rhs.hpp); their first run, with an empty cache, compiles,
+#   and its extra CPU time is the row's "compile s" (children's CPU counts), as Brian2's is.
 #
 # Every row is checked against a tight-tolerance phasmid reference (rtol = atol = 1e-12):
 # the period and the mean extremal angles of every joint over [discard_ms, t_end_ms] =
@@ -42,6 +45,7 @@ PHASMID_METHODS=${PHASMID_METHODS:-"cvodes_bdf erk_dp5"}
 PHASMID_TOLS=${PHASMID_TOLS:-"1e-4 1e-5 1e-6 1e-7 1e-8 1e-9 1e-10"}
 NEURONS_TOLS=${NEURONS_TOLS-"1e-4 1e-5"}
 NEURONS_STIFF_TOL=${NEURONS_STIFF_TOL:-1e-7}
+COMPILED_RHS=${COMPILED_RHS:-1}
 RK4_DTS=${RK4_DTS:-"0.05 0.025 0.01 0.005"}
 GSL_ERRORS=${GSL_ERRORS:-"1e-2 1e-3 1e-4 1e-5 1e-6"}
 GSL_DT=${GSL_DT:-1}  # Brian2 clock dt of the GSL runs, ms (the GSL driver is restarted every dt)
@@ -69,15 +73,23 @@ phasmid_row() {
   # The config's [simulation] tolerances and integrator replaced (or added: the leg config sets none).
   grep -Ev "^([ra]tol|integrator|partitioned|stiff_part_tol) *=" "$CONFIG" |
     sed -e "s/^\[simulation\]/[simulation]\nrtol = $tol\natol = $tol\nintegrator = \"$method\"${extra:+\\n$extra}/" > "$cfg"
-  local proc
+  local proc first=""
+  if [[ $extra == *compiled_rhs* ]]; then  # a cache of the row's own: its first run compiles
+    export PHASMID_CACHE_DIR=$TMP/rhs-cache-$RANDOM
+    first=$(REPEATS=1 process_cpu "$cfg" "$h5")
+  fi
   proc=$(process_cpu "$cfg" "$h5")
+  unset PHASMID_CACHE_DIR
   "$PHASMID" features "$h5" --json > "$TMP/features.json"
-  $PY - "$label" "$tol" "$proc" "$OVERHEAD" "$TMP/features.json" >> "$ROWS" <<'EOF'
+  $PY - "$label" "$tol" "$proc" "$OVERHEAD" "$TMP/features.json" "$first" >> "$ROWS" <<'EOF'
 import json, sys
-label, tol, proc, overhead, fj = sys.argv[1:]
+label, tol, proc, overhead, fj, first = sys.argv[1:]
 f = {x["name"][len("middle."):]: x["value"] for x in json.load(open(fj)) if x["name"].startswith("middle.")}
-print(json.dumps({"tool": "phasmid", "label": label, "tol": float(tol),
-                  "run_s": float(proc) - float(overhead), "process_s": float(proc), "features": f}))
+row = {"tool": "phasmid", "label": label, "tol": float(tol),
+       "run_s": float(proc) - float(overhead), "process_s": float(proc), "features": f}
+if first:
+    row["compile_s"] = float(first) - float(proc)
+print(json.dumps(row))
 EOF
 }
 
@@ -115,12 +127,19 @@ for method in $PHASMID_METHODS; do
     label="phasmid $method, rtol = atol = $tol"
     [ "$tol" = "$SHIPPED_TOL" ] && [ "$method" = "$SHIPPED_METHOD" ] && label+=" (shipped)"
     phasmid_row "$label" "$tol" "$method"
+    if [ "$COMPILED_RHS" = 1 ] && [ "$tol" = "$SHIPPED_TOL" ] && [ "$method" = "$SHIPPED_METHOD" ]; then
+      phasmid_row "${label/ (shipped)/}, compiled_rhs" "$tol" "$method" "compiled_rhs = true"
+    fi
   done
 done
 for tol in $NEURONS_TOLS; do
   echo "bench_brian2: phasmid erk_dp5 partitioned = neurons, rtol = atol = $tol ..." >&2
-  phasmid_row "phasmid erk_dp5 + cvodes_bdf $NEURONS_STIFF_TOL (partitioned = \"neurons\"), rtol = atol = $tol" "$tol" erk_dp5 \
-    "partitioned = \"neurons\"\\nstiff_part_tol = $NEURONS_STIFF_TOL"
+  label="phasmid erk_dp5 + cvodes_bdf $NEURONS_STIFF_TOL (partitioned = \"neurons\"), rtol = atol = $tol"
+  phasmid_row "$label" "$tol" erk_dp5 "partitioned = \"neurons\"\\nstiff_part_tol = $NEURONS_STIFF_TOL"
+  if [ "$COMPILED_RHS" = 1 ]; then
+    phasmid_row "$label, compiled_rhs" "$tol" erk_dp5 \
+      "partitioned = \"neurons\"\\nstiff_part_tol = $NEURONS_STIFF_TOL\\ncompiled_rhs = true"
+  fi
 done
 for dt in $RK4_DTS; do
   echo "bench_brian2: Brian2 RK4 dt = $dt ms ..." >&2
