@@ -236,6 +236,7 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   size_t max_exp_args() const {
     return 2 * synapses_.size() + conditions_ + kMotoneuronExpArgs * neurons_.size() + muscles_.size();
   }
+  friend class NetworkCodegen;  // rhs_source's writer (model/network_codegen.cpp)
   size_t neuron_state_count(const Neuron& n) const;
   size_t modulation_target_state(const Modulation& m) const;
 
