@@ -30,21 +30,7 @@ T joint_acceleration(const JointMechanics& j, const T* p, const T& angle, const 
                      const T& k_dec) {
   const T* g[7];
   for (int i = 0; i < 7; ++i) g[i] = &p[j.geom[i]];
-  switch (j.type) {
-    case JointType::Fti: {
-      FtiGeometry<T> geo{*g[0], *g[1], *g[2], *g[3], *g[4], *g[5], *g[6]};
-      return fti_acceleration(geo, p[j.inertia], p[j.b_v], angle, omega, k_dec, k_inc);
-    }
-    case JointType::Ctr: {
-      CtrGeometry<T> geo{*g[0], *g[1], *g[2], *g[3]};
-      return ctr_acceleration(geo, p[j.inertia], p[j.b_v], angle, omega, k_inc, k_dec);
-    }
-    case JointType::Thc: {
-      ThcGeometry<T> geo{*g[0], *g[1], *g[2], *g[3]};
-      return thc_acceleration(geo, p[j.inertia], p[j.b_v], angle, omega, k_dec, k_inc);
-    }
-  }
-  return T(0.0);
+  return joint_type_acceleration(j.type, g, p[j.inertia], p[j.b_v], angle, omega, k_inc, k_dec);
 }
 
 // Stationary spring-constant ratio at an extremal angle (deg), eqs. (2.43)-(2.45):

@@ -3,9 +3,10 @@
 // spring constants and viscosities of every joint of the front, middle and hind leg.
 #include <string>
 
+#include "model/mechanics.hpp"  // JointType
+
 namespace phasmid::model {
 
-enum class JointType { Thc, Ctr, Fti };
 const char* joint_name(JointType j);        // "thc", "ctr", "fti"
 JointType parse_joint(const std::string& s);  // throws Error
 

@@ -8,6 +8,8 @@
 
 namespace phasmid::model {
 
+enum class JointType { Thc, Ctr, Fti };
+
 // Quadratic muscle force law (2.19): F = k (l - l_min)^2.
 template <class T, class P>
 T muscle_force(const T& k, const T& l, const P& l_min) {
@@ -137,5 +139,31 @@ inline double effective_femur_inertia(double M_F, double L_F, double M_T, double
 }
 
 inline double rod_inertia(double mass_g, double length_mm) { return mass_g * length_mm * length_mm / 3.0; }
+
+// ---- any joint ----------------------------------------------------------------------------
+// Angular acceleration (rad/s^2) of a joint of the given type from its geometry parameters g
+// (define_joint_mechanics' order; CTr and ThC read the first four), inertia, viscosity, angle
+// (rad), omega (rad/s) and the spring constants of the angle-increasing and -decreasing muscle.
+// Generic evaluations (model/joint.hpp) and compiled ones (model/network_codegen.cpp) both call
+// it, so that they compute the same numbers.
+template <class T, class P>
+T joint_type_acceleration(JointType type, const P* const* g, const P& inertia, const P& b_v, const T& angle,
+                          const T& omega, const T& k_inc, const T& k_dec) {
+  switch (type) {
+    case JointType::Fti: {
+      FtiGeometry<P> geo{*g[0], *g[1], *g[2], *g[3], *g[4], *g[5], *g[6]};
+      return fti_acceleration(geo, inertia, b_v, angle, omega, k_dec, k_inc);
+    }
+    case JointType::Ctr: {
+      CtrGeometry<P> geo{*g[0], *g[1], *g[2], *g[3]};
+      return ctr_acceleration(geo, inertia, b_v, angle, omega, k_inc, k_dec);
+    }
+    case JointType::Thc: {
+      ThcGeometry<P> geo{*g[0], *g[1], *g[2], *g[3]};
+      return thc_acceleration(geo, inertia, b_v, angle, omega, k_dec, k_inc);
+    }
+  }
+  return T(0.0);
+}
 
 }  // namespace phasmid::model

@@ -103,33 +103,50 @@ struct DisjointSets {
 };
 
 // The NetworkModel's equations restricted to one part.
+// One part's equations (or the whole model's: an empty layout). Compiled, a part of a partition
+// runs its generated function on packed vectors; rhs on full vectors packs them first.
 class NetworkPart final : public OdeModelPart {
  public:
-  NetworkPart(const NetworkModel& m, NetworkComponents c) : model_(m), comp_(std::move(c)) {}
+  NetworkPart(const NetworkModel& m, NetworkComponents c, RhsLayout layout = {})
+      : model_(m), comp_(std::move(c)), layout_(std::move(layout)) {}
   bool compile(std::string* why) override {
-    compiled_ = compile_rhs(model_.rhs_source(comp_, "phasmid_rhs"), "phasmid_rhs", why);
-    ctx_ = {static_cast<void (*)(const double*, double*, size_t)>(exp_each), &NetworkModel::joint_acceleration_of, &model_};
+    compiled_ = compile_rhs(model_.rhs_source(comp_, layout_, "phasmid_rhs"), "phasmid_rhs", why);
+    if (compiled_) {
+      y_.resize(layout_.own.size());
+      u_.resize(layout_.inputs.size());
+      f_.resize(layout_.own.size());
+    }
     return compiled_ != nullptr;
   }
+  bool packed() const override { return compiled_ && !layout_.own.empty(); }
   void bind(const double* p) override {
     model_.bind_neurons(comp_, p, bound_);
     bound_p_ = p;
   }
+  void rhs_packed(double t, const double* y, const double* u, const double* p, double* ydot) const override {
+    compiled_(t, y, u, p, ydot, &kContext);
+  }
   void rhs(double t, const double* y, const double* p, double* ydot) const override {
-    if (compiled_) return compiled_(t, y, p, ydot, &ctx_);
-    model_.eval_components(comp_, t, y, p, ydot, p == bound_p_ ? &bound_ : nullptr);
+    if (!compiled_) return model_.eval_components(comp_, t, y, p, ydot, p == bound_p_ ? &bound_ : nullptr);
+    if (layout_.own.empty()) return compiled_(t, y, nullptr, p, ydot, &kContext);
+    for (size_t i = 0; i < layout_.own.size(); ++i) y_[i] = y[layout_.own[i]];
+    for (size_t i = 0; i < layout_.inputs.size(); ++i) u_[i] = y[layout_.inputs[i]];
+    compiled_(t, y_.data(), u_.data(), p, f_.data(), &kContext);
+    for (size_t i = 0; i < layout_.own.size(); ++i) ydot[layout_.own[i]] = f_[i];
   }
   void rhs(double t, const JetK* y, const JetK* p, JetK* ydot) const override {
     model_.eval_components(comp_, t, y, p, ydot);
   }
 
  private:
+  static constexpr PhasmidRhsContext kContext{static_cast<void (*)(const double*, double*, size_t)>(exp_each)};
   const NetworkModel& model_;
   NetworkComponents comp_;
+  RhsLayout layout_;
   BoundNeuronParams bound_;
   const double* bound_p_ = nullptr;  // the vector bound_ was gathered from
   PhasmidRhsFn compiled_ = nullptr;
-  PhasmidRhsContext ctx_{};
+  mutable std::vector<double> y_, u_, f_;  // rhs' packed copies (a part serves one run at a time)
 };
 }  // namespace
 
@@ -229,7 +246,7 @@ std::unique_ptr<OdeModelPart> NetworkModel::make_part(const ModelPartition& P, s
     if (mine[muscles_[i].activation]) c.muscles.push_back(i);
   for (size_t i = 0; i < joints_.size(); ++i)
     if (mine[joints_[i].angle_state]) c.joints.push_back(i);
-  return std::make_unique<NetworkPart>(*this, std::move(c));
+  return std::make_unique<NetworkPart>(*this, std::move(c), RhsLayout{P.states[k], P.inputs.at(k)});
 }
 
 }  // namespace phasmid::model

@@ -204,11 +204,9 @@ class NetworkModel : public OdeModelT<NetworkModel> {
                        const BoundNeuronParams* bound = nullptr) const;
   void bind_neurons(const NetworkComponents& c, const double* p, BoundNeuronParams& out) const;
   // The double evaluation of c as C++ source of the function `symbol` (PhasmidRhsFn,
-  // model/compiled_rhs.hpp): eval_components with every index a literal, the same values.
-  std::string rhs_source(const NetworkComponents& c, const std::string& symbol) const;
-  // PhasmidRhsContext::joint_acceleration for a compiled evaluation: model is a NetworkModel.
-  static double joint_acceleration_of(const void* model, size_t joint, const double* p, double angle, double omega,
-                                      double k_inc, double k_dec);
+  // model/compiled_rhs.hpp): eval_components with every index a literal, the same values, on
+  // vectors packed as `layout` says.
+  std::string rhs_source(const NetworkComponents& c, const RhsLayout& layout, const std::string& symbol) const;
 
  private:
   template <class T>

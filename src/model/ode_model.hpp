@@ -60,6 +60,21 @@ class OdeModelPart {
     if (why) *why = "this model kind has no compiled right-hand side";
     return false;
   }
+  // Whether rhs_packed is available (a part of a partition, compiled): the driver then hands
+  // the part its own states and inputs as they are, without spreading them into full vectors.
+  virtual bool packed() const { return false; }
+  // The double rhs on packed vectors: y the part's own states in ModelPartition::states[k]'s
+  // order, u its inputs in ModelPartition::inputs[k]'s order; ydot[i] is what rhs writes at
+  // the full index of y[i]. Only where packed() is true.
+  virtual void rhs_packed(double t, const double* y, const double* u, const double* p, double* ydot) const {
+    (void)t, (void)y, (void)u, (void)p, (void)ydot;
+  }
+};
+
+// Where packed vectors keep their entries: own[i] is the full index of y[i] and ydot[i],
+// inputs[j] that of u[j]. No own states: the vectors are the full ones (a whole model).
+struct RhsLayout {
+  std::vector<size_t> own, inputs;
 };
 
 struct StateInfo {

@@ -67,6 +67,7 @@ struct PartSolver {
   std::unique_ptr<IntegratorSession> session;
 
   std::vector<double> yfull, ffull;  // full-size state and derivative for the part's equations
+  std::vector<double> u;             // its inputs, packed (OdeModelPart::rhs_packed)
   std::vector<JetK> yK, fK;
 
   // Interpolating polynomial of the last step, as Taylor coefficients at t_poly:
@@ -178,26 +179,33 @@ double PartSolver::export_value(size_t e, double at) const {
 
 // Own states from CVODES, inputs from their owners' polynomials at time t (windowed runs: from
 // the snapshots of the part's present window).
+double input_value(const PartSolver& ps, size_t i, double t) {
+  const auto& [owner, e] = ps.input_from[i];
+  const PartSolver& o = *ps.run->parts[owner];
+  return ps.run->windowed ? ps.in_snap[owner].value(o.exports.size(), e, t) : o.export_value(e, t);
+}
+
 template <class Scalar>
 void fill_inputs(const PartSolver& ps, double t, std::vector<Scalar>& full) {
-  for (size_t i = 0; i < ps.inputs.size(); ++i) {
-    const auto& [owner, e] = ps.input_from[i];
-    const PartSolver& o = *ps.run->parts[owner];
-    full[ps.inputs[i]] = Scalar(ps.run->windowed ? ps.in_snap[owner].value(o.exports.size(), e, t) : o.export_value(e, t));
-  }
+  for (size_t i = 0; i < ps.inputs.size(); ++i) full[ps.inputs[i]] = Scalar(input_value(ps, i, t));
 }
 
 int part_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* ud) {
   auto* ps = static_cast<PartSolver*>(ud);
-  fill_inputs(*ps, t, ps->yfull);
   const double* yv = N_VGetArrayPointer(y);
-  for (size_t i = 0; i < ps->states.size(); ++i) ps->yfull[ps->states[i]] = yv[i];
-  ps->eq->rhs(t, ps->yfull.data(), ps->run->p->data(), ps->ffull.data());
   double* out = N_VGetArrayPointer(ydot);
-  for (size_t i = 0; i < ps->states.size(); ++i) {
-    out[i] = ps->ffull[ps->states[i]];
-    if (!std::isfinite(out[i])) return 1;  // recoverable: CVODES retries a smaller step
+  const size_t n = ps->states.size();
+  if (ps->eq->packed()) {  // a compiled part reads its states and inputs where they are
+    for (size_t i = 0; i < ps->inputs.size(); ++i) ps->u[i] = input_value(*ps, i, t);
+    ps->eq->rhs_packed(t, yv, ps->u.data(), ps->run->p->data(), out);
+  } else {
+    fill_inputs(*ps, t, ps->yfull);
+    for (size_t i = 0; i < n; ++i) ps->yfull[ps->states[i]] = yv[i];
+    ps->eq->rhs(t, ps->yfull.data(), ps->run->p->data(), ps->ffull.data());
+    for (size_t i = 0; i < n; ++i) out[i] = ps->ffull[ps->states[i]];
   }
+  for (size_t i = 0; i < n; ++i)
+    if (!std::isfinite(out[i])) return 1;  // recoverable: CVODES retries a smaller step
   return 0;
 }
 
@@ -252,6 +260,7 @@ void build_parts(Run& run, const model::OdeModel& model, const model::ModelParti
     compile_if_asked(ps->eq.get(), options);
     ps->yfull.assign(n, 0.0);
     ps->ffull.assign(n, 0.0);
+    ps->u.assign(ps->inputs.size(), 0.0);
     ps->yK.assign(n, JetK(0.0));
     ps->fK.assign(n, JetK(0.0));
     run.parts.push_back(std::move(ps));

@@ -63,6 +63,18 @@ void expect_compiled_equals_generic(const model::OdeModel& m, model::PartitionGr
         ASSERT_EQ(f_compiled[i], f_generic[i]) << (k < P.size() ? P.names[k] : "whole") << ": " << m.states()[i].name
                                                << " at t = " << grid[k_out];
       }
+      if (k == P.size()) {
+        EXPECT_FALSE(compiled[k]->packed());
+        continue;
+      }
+      // The driver's call: own states and inputs packed in the partition's order.
+      ASSERT_TRUE(compiled[k]->packed());
+      std::vector<double> y_own, u, f_own(own.size(), NAN);
+      for (size_t i : own) y_own.push_back(y[i]);
+      for (size_t i : P.inputs[k]) u.push_back(y[i]);
+      compiled[k]->rhs_packed(grid[k_out], y_own.data(), u.data(), p.data(), f_own.data());
+      for (size_t i = 0; i < own.size(); ++i)
+        ASSERT_EQ(f_own[i], f_generic[own[i]]) << P.names[k] << " packed: " << m.states()[own[i]].name;
     }
   }
 }
@@ -126,12 +138,13 @@ TEST(CompiledRhs, FailureIsReportedAndObjectsAreCached) {
   EXPECT_TRUE(std::filesystem::exists(log)) << log;
 
   const std::string src = model::compiled_rhs_preamble() +
-                          "extern \"C\" void f(double, const double* y, const double*, double* ydot, const PhasmidRhsContext*)"
+                          "extern \"C\" void f(double, const double* y, const double*, const double*, double* ydot, "
+                          "const PhasmidRhsContext*)"
                           " { ydot[0] = -2.0 * y[0]; }\n";
   const PhasmidRhsFn f = model::compile_rhs(src, "f", &why);
   ASSERT_NE(f, nullptr) << why;
   double y = 3.0, ydot = 0.0;
-  f(0.0, &y, nullptr, &ydot, nullptr);
+  f(0.0, &y, nullptr, nullptr, &ydot, nullptr);
   EXPECT_EQ(ydot, -6.0);
   EXPECT_EQ(model::compile_rhs(src, "f", &why), f);
   size_t objects = 0;
