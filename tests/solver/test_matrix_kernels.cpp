@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "solver/matrix_kernels.hpp"
 
@@ -16,22 +17,33 @@ namespace {
 
 using namespace phasmid::solver;
 
-class MatrixKernels : public ::testing::Test {
+class KernelFixture {
  protected:
-  static constexpr sunindextype kN = 13;
-  void SetUp() override { ASSERT_EQ(SUNContext_Create(nullptr, &ctx_), 0); }
-  void TearDown() override { SUNContext_Free(&ctx_); }
+  explicit KernelFixture(sunindextype n) : kN(n) { SUNContext_Create(nullptr, &ctx_); }
+  ~KernelFixture() { SUNContext_Free(&ctx_); }
   // A random matrix, diagonal kept small so that partial pivoting swaps rows.
-  void fill(SUNMatrix A) {
+  void fill(SUNMatrix A) const {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     for (sunindextype j = 0; j < kN; ++j)
       for (sunindextype i = 0; i < kN; ++i) SM_ELEMENT_D(A, i, j) = i == j ? 0.01 * u(rng) : u(rng);
   }
+  const sunindextype kN;
   SUNContext ctx_ = nullptr;
 };
 
-TEST_F(MatrixKernels, DenseLuSolveMatchesSundialsAndSolvesTheSystem) {
+// Dense: sizes of the unrolled solves (up to 16 unknowns) and of the general loops above them.
+class MatrixKernels : public KernelFixture, public ::testing::TestWithParam<int> {
+ protected:
+  MatrixKernels() : KernelFixture(GetParam()) {}
+};
+
+class SparseKernels : public KernelFixture, public ::testing::Test {
+ protected:
+  SparseKernels() : KernelFixture(13) {}
+};
+
+TEST_P(MatrixKernels, DenseLuSolveMatchesSundialsAndSolvesTheSystem) {
   N_Vector y = N_VNew_Serial(kN, ctx_);
   SUNMatrix A0 = SUNDenseMatrix(kN, kN, ctx_), A1 = SUNDenseMatrix(kN, kN, ctx_), M = SUNDenseMatrix(kN, kN, ctx_);
   fill(A0);
@@ -69,7 +81,7 @@ TEST_F(MatrixKernels, DenseLuSolveMatchesSundialsAndSolvesTheSystem) {
   SUNLinSolFree(S1);
 }
 
-TEST_F(MatrixKernels, SparseScaleAddIdentityAndCopyMatchSundials) {
+TEST_F(SparseKernels, ScaleAddIdentityAndCopyMatchSundials) {
   SUNMatrix D = SUNDenseMatrix(kN, kN, ctx_);
   fill(D);
   for (sunindextype j = 0; j < kN; ++j)  // sparsify
@@ -101,5 +113,8 @@ TEST_F(MatrixKernels, SparseScaleAddIdentityAndCopyMatchSundials) {
   }
   SUNMatDestroy(D);
 }
+
+INSTANTIATE_TEST_SUITE_P(Sizes, MatrixKernels, ::testing::Values(1, 2, 5, 12, 13, 16, 17, 30),
+                         [](const ::testing::TestParamInfo<int>& i) { return "n" + std::to_string(i.param); });
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "solver/serial_kernels.hpp"
@@ -15,9 +16,11 @@ namespace {
 
 using phasmid::solver::install_serial_kernels;
 
-class SerialKernels : public ::testing::Test {
+// Lengths of the short-vector kernels (up to 32: each remainder of four, both ends) and above
+// them (33, 37: the loops, with their remainders).
+class SerialKernels : public ::testing::TestWithParam<int> {
  protected:
-  static constexpr sunindextype kN = 37;  // odd: exercises vector-loop remainders
+  const sunindextype kN = GetParam();
   void SetUp() override {
     ASSERT_EQ(SUNContext_Create(nullptr, &ctx_), 0);
     ref_ = N_VNew_Serial(kN, ctx_);
@@ -37,12 +40,12 @@ class SerialKernels : public ::testing::Test {
     owned_.push_back(b);
     for (sunindextype i = 0; i < kN; ++i) {
       double v = dist_(rng_);
-      if (with_zero && i == 5) v = 0.0;
+      if (with_zero && i == kN / 2) v = 0.0;
       NV_Ith_S(a, i) = NV_Ith_S(b, i) = v;
     }
     return {a, b};
   }
-  static void expect_equal(N_Vector a, N_Vector b) {
+  void expect_equal(N_Vector a, N_Vector b) const {
     for (sunindextype i = 0; i < kN; ++i) EXPECT_NEAR(NV_Ith_S(a, i), NV_Ith_S(b, i), 1e-14 * (1 + std::abs(NV_Ith_S(a, i)))) << i;
   }
   SUNContext ctx_ = nullptr;
@@ -52,7 +55,7 @@ class SerialKernels : public ::testing::Test {
   std::uniform_real_distribution<double> dist_{-2.0, 3.0};
 };
 
-TEST_F(SerialKernels, ClonesInheritTheKernelsAndTheOriginalIsUntouched) {
+TEST_P(SerialKernels, ClonesInheritTheKernelsAndTheOriginalIsUntouched) {
   N_Vector c = N_VClone(ours_);
   owned_.push_back(c);
   EXPECT_EQ(c->ops->nvlinearsum, ours_->ops->nvlinearsum);
@@ -60,7 +63,7 @@ TEST_F(SerialKernels, ClonesInheritTheKernelsAndTheOriginalIsUntouched) {
   EXPECT_EQ(N_VGetLength(c), kN);
 }
 
-TEST_F(SerialKernels, ElementwiseOperationsMatchSundials) {
+TEST_P(SerialKernels, ElementwiseOperationsMatchSundials) {
   auto [x0, x1] = pair();
   auto [y0, y1] = pair();
   auto [z0, z1] = pair();
@@ -100,7 +103,7 @@ TEST_F(SerialKernels, ElementwiseOperationsMatchSundials) {
   expect_equal(z0, z1);
 }
 
-TEST_F(SerialKernels, ReductionsMatchSundials) {
+TEST_P(SerialKernels, ReductionsMatchSundials) {
   auto [x0, x1] = pair();
   auto [y0, y1] = pair();
   auto [id0, id1] = pair();
@@ -115,7 +118,7 @@ TEST_F(SerialKernels, ReductionsMatchSundials) {
   EXPECT_NEAR(N_VWSqrSumMaskLocal(x0, y0, id0), N_VWSqrSumMaskLocal(x1, y1, id1), 1e-11);
 }
 
-TEST_F(SerialKernels, FusedAndArrayOperationsMatchSundials) {
+TEST_P(SerialKernels, FusedAndArrayOperationsMatchSundials) {
   constexpr int m = 3, k = 4;
   std::vector<N_Vector> X0, X1, Y0, Y1, Z0, Z1;
   for (int i = 0; i < k; ++i) {
@@ -188,7 +191,7 @@ TEST_F(SerialKernels, FusedAndArrayOperationsMatchSundials) {
 
 // Linear combinations of 1 vector, of the one-pass kernel's largest count (16) and of more (20,
 // the pass-per-vector loop), into a separate vector and into X_0 itself.
-TEST_F(SerialKernels, LinearCombinationOfAnyCountMatchesSundials) {
+TEST_P(SerialKernels, LinearCombinationOfAnyCountMatchesSundials) {
   for (int k : {1, 2, 16, 20}) {
     std::vector<N_Vector> X0, X1;
     std::vector<double> c;
@@ -206,3 +209,6 @@ TEST_F(SerialKernels, LinearCombinationOfAnyCountMatchesSundials) {
     expect_equal(X0[0], X1[0]);
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Lengths, SerialKernels, ::testing::Values(1, 2, 3, 4, 5, 6, 7, 8, 9, 12, 14, 15, 16, 17, 26, 31, 32, 33, 37),
+                         [](const ::testing::TestParamInfo<int>& i) { return "n" + std::to_string(i.param); });
