@@ -83,15 +83,23 @@ int dense_lu_setup(SUNLinearSolver S, SUNMatrix A) {
 constexpr Index kShortSolve = 16;
 template <int N>
 void lu_solve_short(Real* const* a, const Index* piv, Real* xd) {
-  Real x[N];
+  Real x[N > 0 ? N : 1];
   for (int k = 0; k < N; ++k) x[k] = xd[k];
-  for (int k = 0; k < N; ++k)
-    if (piv[k] != k) std::swap(x[k], x[piv[k]]);
-  for (int k = 0; k + 1 < N; ++k)  // L y = P b, L unit lower triangular
-    for (int i = k + 1; i < N; ++i) x[i] -= a[k][i] * x[k];
+  if constexpr (N > 1)  // (one unknown has no row to swap with)
+    for (int k = 0; k < N; ++k)
+      if (piv[k] != k) std::swap(x[k], x[piv[k]]);
+#pragma GCC unroll 16
+  for (int k = 0; k + 1 < N; ++k) {  // L y = P b, L unit lower triangular
+    const Real* col = a[k];
+#pragma GCC unroll 16
+    for (int i = k + 1; i < N; ++i) x[i] -= col[i] * x[k];
+  }
+#pragma GCC unroll 16
   for (int k = N - 1; k >= 0; --k) {  // U x = y
-    x[k] /= a[k][k];
-    for (int i = 0; i < k; ++i) x[i] -= a[k][i] * x[k];
+    const Real* col = a[k];
+    x[k] /= col[k];
+#pragma GCC unroll 16
+    for (int i = 0; i < k; ++i) x[i] -= col[i] * x[k];
   }
   for (int k = 0; k < N; ++k) xd[k] = x[k];
 }
