@@ -22,6 +22,9 @@
 # config, model assembly), so that load from other processes does not count (phasmid's own
 # solve clock is wall time). "process s" is the CPU time of the whole process of one run
 # (phasmid: start, config, solve, HDF5 output; Brian2: the compiled binary).
+# Last, the fastest matched row of each tool runs again, HEAD_TO_HEAD times (default REPEATS)
+# in alternation, phasmid then Brian2, so that both meet the same load; the minima of these
+# paired runs give the head-to-head ratio (the table's rows ran minutes apart).
 # Needs Debian's Python with Brian2 (apt-get install -y python3-brian python3-numpy
 # libgsl-dev).
 set -euo pipefail
@@ -49,6 +52,8 @@ COMPILED_RHS=${COMPILED_RHS:-1}
 RK4_DTS=${RK4_DTS:-"0.05 0.025 0.01 0.005"}
 GSL_ERRORS=${GSL_ERRORS:-"1e-2 1e-3 1e-4 1e-5 1e-6"}
 GSL_DT=${GSL_DT:-1}  # Brian2 clock dt of the GSL runs, ms (the GSL driver is restarted every dt)
+HEAD_TO_HEAD=${HEAD_TO_HEAD:-$REPEATS}
+ROW=0  # rows so far: each keeps its own config, cache and Brian2 project for the head-to-head
 
 [ -x "$PHASMID" ] || { echo "bench_brian2: $PHASMID not found (build it: cmake --build build --target phasmid)" >&2; exit 1; }
 $PY -c "import brian2, numpy" 2>/dev/null || { echo "bench_brian2: $PY lacks brian2/numpy (apt-get install -y python3-brian python3-numpy libgsl-dev)" >&2; exit 1; }
@@ -69,49 +74,69 @@ process_cpu() {
 # One phasmid row: simulate REPEATS times with integrator METHOD at rtol = atol = TOL (and the
 # [simulation] lines EXTRA, \n-separated), JSON line with times and features.
 phasmid_row() {
-  local label=$1 tol=$2 method=${3:-cvodes_bdf} extra=${4:-} h5=$TMP/phasmid_$2.h5 cfg=$TMP/phasmid_$2.toml
+  local label=$1 tol=$2 method=${3:-cvodes_bdf} extra=${4:-}
+  ROW=$((ROW + 1))
+  local h5=$TMP/phasmid_$ROW.h5 cfg=$TMP/phasmid_$ROW.toml cache=""
   # The config's [simulation] tolerances and integrator replaced (or added: the leg config sets none).
   grep -Ev "^([ra]tol|integrator|partitioned|stiff_part_tol) *=" "$CONFIG" |
     sed -e "s/^\[simulation\]/[simulation]\nrtol = $tol\natol = $tol\nintegrator = \"$method\"${extra:+\\n$extra}/" > "$cfg"
   local proc first=""
   if [[ $extra == *compiled_rhs* ]]; then  # a cache of the row's own: its first run compiles
-    export PHASMID_CACHE_DIR=$TMP/rhs-cache-$RANDOM
+    cache=$TMP/rhs-cache-$ROW
+    export PHASMID_CACHE_DIR=$cache
     first=$(REPEATS=1 process_cpu "$cfg" "$h5")
   fi
   proc=$(process_cpu "$cfg" "$h5")
   unset PHASMID_CACHE_DIR
   "$PHASMID" features "$h5" --json > "$TMP/features.json"
-  $PY - "$label" "$tol" "$proc" "$OVERHEAD" "$TMP/features.json" "$first" >> "$ROWS" <<'EOF'
+  $PY - "$label" "$tol" "$proc" "$OVERHEAD" "$TMP/features.json" "$first" "$cfg" "$cache" >> "$ROWS" <<'EOF2'
 import json, sys
-label, tol, proc, overhead, fj, first = sys.argv[1:]
+label, tol, proc, overhead, fj, first, cfg, cache = sys.argv[1:]
 f = {x["name"][len("middle."):]: x["value"] for x in json.load(open(fj)) if x["name"].startswith("middle.")}
 row = {"tool": "phasmid", "label": label, "tol": float(tol),
-       "run_s": float(proc) - float(overhead), "process_s": float(proc), "features": f}
+       "run_s": float(proc) - float(overhead), "process_s": float(proc), "features": f, "config": cfg, "cache": cache}
 if first:
     row["compile_s"] = float(first) - float(proc)
 print(json.dumps(row))
-EOF
+EOF2
 }
 
-# One Brian2 row: compile once, run REPEATS times.
+# One Brian2 row: compile once, run REPEATS times; the project stays for the head-to-head.
 brian_row() {
   local label=$1; shift
-  local out
-  if out=$($PY "$BRIAN" --repeats "$REPEATS" --dir "$TMP/brian2_project" "$@" 2> "$TMP/brian2.log" | tail -1); then :; fi
+  local out dir
+  ROW=$((ROW + 1))
+  dir=$TMP/brian2_$ROW
+  if out=$($PY "$BRIAN" --repeats "$REPEATS" --dir "$dir" "$@" 2> "$TMP/brian2.log" | tail -1); then :; fi
   [ -n "$out" ] || out='{"error": "failed (see the log)"}'
-  $PY - "$label" "$out" >> "$ROWS" <<'EOF'
+  $PY - "$label" "$out" "$dir" >> "$ROWS" <<'EOF2'
 import json, sys
-label, out = sys.argv[1:]
+label, out, d = sys.argv[1:]
 r = json.loads(out)
-row = {"tool": "brian2", "label": label}
+row = {"tool": "brian2", "label": label, "project": d}
 if "error" in r:
     row["error"] = r["error"]
 else:
     row.update(run_s=r["run_cpu_s_min"], process_s=min(r["process_cpu_s"]), compile_s=r["compile_s"],
                features={k: v for k, v in r.items() if "." in k})
 print(json.dumps(row))
-EOF
-  rm -rf "$TMP/brian2_project"
+EOF2
+}
+
+# The head-to-head: the fastest matched row of each tool (FASTEST: "config cache project"),
+# alternately, HEAD_TO_HEAD times; prints "phasmid_min brian2_min" (CPU s, as in the table).
+head_to_head() {
+  local cfg=$1 cache=$2 project=$3 p b pm="" bm=""
+  for _ in $(seq "$HEAD_TO_HEAD"); do
+    [ -n "$cache" ] && export PHASMID_CACHE_DIR=$cache
+    p=$(REPEATS=1 process_cpu "$cfg" "$TMP/head_to_head.h5")
+    unset PHASMID_CACHE_DIR
+    (cd "$project" && ./main > results/stdout.txt) || { echo "bench_brian2: Brian2's binary in $project failed" >&2; exit 1; }
+    b=$(awk '{print $1}' "$project/results/last_run_info.txt")
+    pm+="$(awk -v a="$p" -v o="$OVERHEAD" 'BEGIN {print a - o}') "
+    bm+="$b "
+  done
+  echo "$(echo "$pm" | tr ' ' '\n' | grep . | sort -g | head -1) $(echo "$bm" | tr ' ' '\n' | grep . | sort -g | head -1)"
 }
 
 echo "bench_brian2: phasmid start-up CPU (1 ms of model time) ..." >&2
@@ -149,10 +174,12 @@ for e in $GSL_ERRORS; do
   echo "bench_brian2: Brian2 GSL RKF45 absolute error $e ..." >&2
   brian_row "Brian2 standalone GSL RKF45, abs. error $e (dt = $GSL_DT ms)" --method rkf45 --error "$e" --dt "$GSL_DT"
 done
+TABLE=$TMP/table.txt
 
-$PY - "$ROWS" "$REPEATS" "$OVERHEAD" "$MODEL" "$JOINTS" <<'EOF'
+$PY - "$ROWS" "$REPEATS" "$OVERHEAD" "$MODEL" "$JOINTS" "$TMP/fastest.txt" <<'EOF'
 import json, sys
 rows = [json.loads(l) for l in open(sys.argv[1])]
+open(sys.argv[6], "w").close()
 joints = sys.argv[5].split()
 ref = rows[0]["features"]
 def errors(r):
@@ -189,6 +216,16 @@ if shipped and bm:
     print(f"phasmid shipped / fastest matched Brian2 ({bm['label']}): {shipped['run_s'] / bm['run_s']:.2f}x the time")
 if pm and bm:
     print(f"fastest matched phasmid ({pm['label']}) / fastest matched Brian2: {pm['run_s'] / bm['run_s']:.2f}x the time")
+    with open(sys.argv[6], "w") as out:
+        out.write(f"{pm['config']} {pm['cache'] or '-'} {bm['project']}\n")
 print("(matched: every period within 0.01 ms and every mean extremal angle within 0.01 deg of the reference; "
       "> 1x: phasmid is slower)")
 EOF
+if [ -s "$TMP/fastest.txt" ] && [ "$HEAD_TO_HEAD" -gt 0 ]; then
+  read -r cfg cache project < "$TMP/fastest.txt"
+  [ "$cache" = - ] && cache=""
+  echo "bench_brian2: head-to-head, $HEAD_TO_HEAD alternating runs of each fastest matched row ..." >&2
+  read -r p b <<< "$(head_to_head "$cfg" "$cache" "$project")"
+  awk -v p="$p" -v b="$b" -v n="$HEAD_TO_HEAD" 'BEGIN {
+    printf "head-to-head, the two fastest matched rows alternating, min of %d runs each: phasmid %.3f s, Brian2 %.3f s: %.2fx the time\n", n, p, b, p / b }'
+fi
