@@ -61,6 +61,9 @@ TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 ROWS=$TMP/rows.jsonl
 
+# The smallest of the numbers given as arguments.
+min_of() { printf '%s\n' "$@" | sort -g | head -1; }
+
 # Minimum over REPEATS runs of the CPU time (user + system) of `phasmid simulate CFG`.
 process_cpu() {
   local best=""
@@ -68,7 +71,7 @@ process_cpu() {
     { TIMEFORMAT='%U %S'; time "$PHASMID" simulate "$1" -o "$2" -q; } 2> "$TMP/time.txt"
     best+="$(tail -1 "$TMP/time.txt" | awk '{print $1 + $2}') "
   done
-  echo "$best" | tr ' ' '\n' | grep . | sort -g | head -1
+  min_of $best
 }
 
 # One phasmid row: simulate REPEATS times with integrator METHOD at rtol = atol = TOL (and the
@@ -123,8 +126,9 @@ print(json.dumps(row))
 EOF2
 }
 
-# The head-to-head: the fastest matched row of each tool (FASTEST: "config cache project"),
-# alternately, HEAD_TO_HEAD times; prints "phasmid_min brian2_min" (CPU s, as in the table).
+# The head-to-head: phasmid's config CFG (with its compiled-rhs CACHE, or "") and the Brian2
+# PROJECT run alternately, HEAD_TO_HEAD times; prints "phasmid_min brian2_min" (CPU s, as in
+# the table).
 head_to_head() {
   local cfg=$1 cache=$2 project=$3 p b pm="" bm=""
   for _ in $(seq "$HEAD_TO_HEAD"); do
@@ -136,7 +140,7 @@ head_to_head() {
     pm+="$(awk -v a="$p" -v o="$OVERHEAD" 'BEGIN {print a - o}') "
     bm+="$b "
   done
-  echo "$(echo "$pm" | tr ' ' '\n' | grep . | sort -g | head -1) $(echo "$bm" | tr ' ' '\n' | grep . | sort -g | head -1)"
+  echo "$(min_of $pm) $(min_of $bm)"
 }
 
 echo "bench_brian2: phasmid start-up CPU (1 ms of model time) ..." >&2
@@ -174,7 +178,6 @@ for e in $GSL_ERRORS; do
   echo "bench_brian2: Brian2 GSL RKF45 absolute error $e ..." >&2
   brian_row "Brian2 standalone GSL RKF45, abs. error $e (dt = $GSL_DT ms)" --method rkf45 --error "$e" --dt "$GSL_DT"
 done
-TABLE=$TMP/table.txt
 
 $PY - "$ROWS" "$REPEATS" "$OVERHEAD" "$MODEL" "$JOINTS" "$TMP/fastest.txt" <<'EOF'
 import json, sys

@@ -102,7 +102,6 @@ struct DisjointSets {
   void join(size_t a, size_t b) { parent[find(a)] = find(b); }
 };
 
-// The NetworkModel's equations restricted to one part.
 // One part's equations (or the whole model's: an empty layout). Compiled, a part of a partition
 // runs its generated function on packed vectors; rhs on full vectors packs them first.
 class NetworkPart final : public OdeModelPart {

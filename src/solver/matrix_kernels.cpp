@@ -7,9 +7,9 @@
 
 #include <algorithm>
 #include <array>
-#include <utility>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 namespace phasmid::solver {
 namespace {
@@ -74,8 +74,6 @@ int dense_lu_setup(SUNLinearSolver S, SUNMatrix A) {
   return SUNLS_SUCCESS;
 }
 
-// x = A^-1 b from the factors (SUNDlsMat_denseGETRS: the same operations in the same order,
-// so the same numbers).
 // The solve for N <= kShortSolve unknowns (a joint network's stiff part has 12) with N known
 // to the compiler: the substitutions unrolled, the unknowns in registers. The same operations
 // in the same order as the general loops below, so the same results bit for bit; those spent
@@ -111,6 +109,8 @@ constexpr std::array<void (*)(Real* const*, const Index*, Real*), sizeof...(N)> 
 }
 constexpr auto kShortSolves = short_solves(std::make_integer_sequence<int, kShortSolve + 1>{});
 
+// x = A^-1 b from the factors (SUNDlsMat_denseGETRS: the same operations in the same order,
+// so the same numbers).
 int dense_lu_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, Real) {
   auto* content = static_cast<SUNLinearSolverContent_Dense>(S->content);
   const Index n = SM_COLUMNS_D(A);

@@ -177,8 +177,6 @@ double PartSolver::export_value(size_t e, double at) const {
   return horner(coef, exports.size(), e, order, at - t_poly);
 }
 
-// Own states from CVODES, inputs from their owners' polynomials at time t (windowed runs: from
-// the snapshots of the part's present window).
 // Whether every x[i] is finite: x - x is 0 for a finite number and NaN for inf or NaN, so the
 // sum is 0 exactly when all are finite (no branch per entry, half the instructions of a test
 // of each).
@@ -188,12 +186,15 @@ bool all_finite(const double* x, size_t n) {
   return s == 0.0;
 }
 
+// Input i of the part at time t from its owner's polynomial (windowed runs: from the snapshot
+// of the part's present window).
 double input_value(const PartSolver& ps, size_t i, double t) {
   const auto& [owner, e] = ps.input_from[i];
   const PartSolver& o = *ps.run->parts[owner];
   return ps.run->windowed ? ps.in_snap[owner].value(o.exports.size(), e, t) : o.export_value(e, t);
 }
 
+// The part's inputs at time t, written into a full-size vector at their indices.
 template <class Scalar>
 void fill_inputs(const PartSolver& ps, double t, std::vector<Scalar>& full) {
   for (size_t i = 0; i < ps.inputs.size(); ++i) full[ps.inputs[i]] = Scalar(input_value(ps, i, t));

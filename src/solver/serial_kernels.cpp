@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <array>
-#include <utility>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 // Semantics follow SUNDIALS 6.4's nvector_serial.c (documented in the N_Vector chapter of the
 // user guide). Elementwise loops read element i of every operand before writing element i of
@@ -22,10 +22,9 @@ using Index = sunindextype;
 inline Real* data(N_Vector v) { return NV_DATA_S(v); }
 inline Index length(N_Vector v) { return NV_LENGTH_S(v); }
 
-// Four doubles as one vector (GCC and Clang's vector extension). Written out because the
-// compiler did not vectorise the four scalar sums it replaces (3.8 instructions per term on a
-// joint's 14 states); each lane still multiplies and adds as the scalar code did, so the
-// results are the same bit for bit.
+// Four doubles as one vector (GCC and Clang's vector extension), so that a short kernel can
+// keep its running sums in vector registers from one operand vector to the next. Each lane
+// multiplies and adds as scalar code would, so the results are the same bit for bit.
 typedef Real Vec4 __attribute__((vector_size(4 * sizeof(Real))));
 inline Vec4 load4(const Real* x) {
   Vec4 v;
