@@ -16,17 +16,18 @@
 # Every row is checked against a tight-tolerance phasmid reference (rtol = atol = 1e-12):
 # the period and the mean extremal angles of every joint over [discard_ms, t_end_ms] =
 # [2000, 9000] ms; the table gives the largest error of each kind over the joints. Times are
-# CPU seconds of the solve only, minima over REPEATS runs: Brian2's standalone run clock
-# (std::clock around the network run; code generation and compilation reported apart), and
-# phasmid's process CPU time minus that of the same process for 1 ms of model time (start,
-# config, model assembly), so that load from other processes does not count (phasmid's own
-# solve clock is wall time). "process s" is the CPU time of the whole process of one run
-# (phasmid: start, config, solve, HDF5 output; Brian2: the compiled binary).
+# CPU seconds of the solve only, minima over REPEATS runs, by the same clock for both tools:
+# std::clock around the run, in the process that runs it. Brian2: its standalone run clock
+# (around the network run; code generation and compilation reported apart). phasmid: the
+# attribute /trajectory cpu_seconds (around the solve: schedule, parts, integration and
+# output; start, config, model assembly and the features after it are outside), docs/hdf5.md.
+# "process s" is the CPU time of the whole process of one run (phasmid: start, config, solve,
+# HDF5 output; Brian2: the compiled binary).
 # Last, the fastest matched row of each tool runs again, HEAD_TO_HEAD times (default REPEATS)
 # in alternation, phasmid then Brian2, so that both meet the same load; the minima of these
 # paired runs give the head-to-head ratio (the table's rows ran minutes apart).
 # Needs Debian's Python with Brian2 (apt-get install -y python3-brian python3-numpy
-# libgsl-dev).
+# libgsl-dev) and h5dump (hdf5-tools).
 set -euo pipefail
 REPEATS=${1:-3}
 MODEL=${2:-single_joint_fti}
@@ -57,6 +58,7 @@ ROW=0  # rows so far: each keeps its own config, cache and Brian2 project for th
 
 [ -x "$PHASMID" ] || { echo "bench_brian2: $PHASMID not found (build it: cmake --build build --target phasmid)" >&2; exit 1; }
 $PY -c "import brian2, numpy" 2>/dev/null || { echo "bench_brian2: $PY lacks brian2/numpy (apt-get install -y python3-brian python3-numpy libgsl-dev)" >&2; exit 1; }
+command -v h5dump >/dev/null || { echo "bench_brian2: h5dump not found (apt-get install -y hdf5-tools)" >&2; exit 1; }
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 ROWS=$TMP/rows.jsonl
@@ -64,14 +66,19 @@ ROWS=$TMP/rows.jsonl
 # The smallest of the numbers given as arguments.
 min_of() { printf '%s\n' "$@" | sort -g | head -1; }
 
-# Minimum over REPEATS runs of the CPU time (user + system) of `phasmid simulate CFG`.
-process_cpu() {
-  local best=""
+# The solve's CPU time (s) that `phasmid simulate` wrote into H5.
+solve_cpu() { h5dump -a /trajectory/cpu_seconds "$1" | awk '/\(0\)/ {print $2}'; }
+
+# Minima over REPEATS runs of `phasmid simulate CFG -o H5`: "process_cpu solve_cpu" (the process's
+# CPU time, user + system, and the solve's).
+phasmid_cpu() {
+  local proc="" solve=""
   for _ in $(seq "$REPEATS"); do
     { TIMEFORMAT='%U %S'; time "$PHASMID" simulate "$1" -o "$2" -q; } 2> "$TMP/time.txt"
-    best+="$(tail -1 "$TMP/time.txt" | awk '{print $1 + $2}') "
+    proc+="$(tail -1 "$TMP/time.txt" | awk '{print $1 + $2}') "
+    solve+="$(solve_cpu "$2") "
   done
-  min_of $best
+  echo "$(min_of $proc) $(min_of $solve)"
 }
 
 # One phasmid row: simulate REPEATS times with integrator METHOD at rtol = atol = TOL (and the
@@ -83,21 +90,21 @@ phasmid_row() {
   # The config's [simulation] tolerances and integrator replaced (or added: the leg config sets none).
   grep -Ev "^([ra]tol|integrator|partitioned|stiff_part_tol) *=" "$CONFIG" |
     sed -e "s/^\[simulation\]/[simulation]\nrtol = $tol\natol = $tol\nintegrator = \"$method\"${extra:+\\n$extra}/" > "$cfg"
-  local proc first=""
+  local proc solve first="" _
   if [[ $extra == *compiled_rhs* ]]; then  # a cache of the row's own: its first run compiles
     cache=$TMP/rhs-cache-$ROW
     export PHASMID_CACHE_DIR=$cache
-    first=$(REPEATS=1 process_cpu "$cfg" "$h5")
+    read -r first _ <<< "$(REPEATS=1 phasmid_cpu "$cfg" "$h5")"
   fi
-  proc=$(process_cpu "$cfg" "$h5")
+  read -r proc solve <<< "$(phasmid_cpu "$cfg" "$h5")"
   unset PHASMID_CACHE_DIR
   "$PHASMID" features "$h5" --json > "$TMP/features.json"
-  $PY - "$label" "$tol" "$proc" "$OVERHEAD" "$TMP/features.json" "$first" "$cfg" "$cache" >> "$ROWS" <<'EOF2'
+  $PY - "$label" "$tol" "$proc" "$solve" "$TMP/features.json" "$first" "$cfg" "$cache" >> "$ROWS" <<'EOF2'
 import json, sys
-label, tol, proc, overhead, fj, first, cfg, cache = sys.argv[1:]
+label, tol, proc, solve, fj, first, cfg, cache = sys.argv[1:]
 f = {x["name"][len("middle."):]: x["value"] for x in json.load(open(fj)) if x["name"].startswith("middle.")}
 row = {"tool": "phasmid", "label": label, "tol": float(tol),
-       "run_s": float(proc) - float(overhead), "process_s": float(proc), "features": f, "config": cfg, "cache": cache}
+       "run_s": float(solve), "process_s": float(proc), "features": f, "config": cfg, "cache": cache}
 if first:
     row["compile_s"] = float(first) - float(proc)
 print(json.dumps(row))
@@ -133,19 +140,17 @@ head_to_head() {
   local cfg=$1 cache=$2 project=$3 p b pm="" bm=""
   for _ in $(seq "$HEAD_TO_HEAD"); do
     [ -n "$cache" ] && export PHASMID_CACHE_DIR=$cache
-    p=$(REPEATS=1 process_cpu "$cfg" "$TMP/head_to_head.h5")
+    "$PHASMID" simulate "$cfg" -o "$TMP/head_to_head.h5" -q
+    p=$(solve_cpu "$TMP/head_to_head.h5")
     unset PHASMID_CACHE_DIR
     (cd "$project" && ./main > results/stdout.txt) || { echo "bench_brian2: Brian2's binary in $project failed" >&2; exit 1; }
     b=$(awk '{print $1}' "$project/results/last_run_info.txt")
-    pm+="$(awk -v a="$p" -v o="$OVERHEAD" 'BEGIN {print a - o}') "
+    pm+="$p "
     bm+="$b "
   done
   echo "$(min_of $pm) $(min_of $bm)"
 }
 
-echo "bench_brian2: phasmid start-up CPU (1 ms of model time) ..." >&2
-sed -e "s/^t_end_ms *=.*/t_end_ms = 1/" -e "s/^discard_ms *=.*/discard_ms = 0/" "$CONFIG" > "$TMP/overhead.toml"
-OVERHEAD=$(process_cpu "$TMP/overhead.toml" "$TMP/overhead.h5")
 echo "bench_brian2: reference (phasmid, rtol = atol = 1e-12) ..." >&2
 REPEATS_SAVED=$REPEATS; REPEATS=1
 phasmid_row "reference" 1e-12
@@ -179,7 +184,7 @@ for e in $GSL_ERRORS; do
   brian_row "Brian2 standalone GSL RKF45, abs. error $e (dt = $GSL_DT ms)" --method rkf45 --error "$e" --dt "$GSL_DT"
 done
 
-$PY - "$ROWS" "$REPEATS" "$OVERHEAD" "$MODEL" "$JOINTS" "$TMP/fastest.txt" <<'EOF'
+$PY - "$ROWS" "$REPEATS" "-" "$MODEL" "$JOINTS" "$TMP/fastest.txt" <<'EOF'
 import json, sys
 rows = [json.loads(l) for l in open(sys.argv[1])]
 open(sys.argv[6], "w").close()
@@ -195,7 +200,7 @@ def errors(r):
         return None
     return max(dp, key=abs), max(da, key=abs)
 print(f"# bench_brian2: {sys.argv[4]}, 9000 ms, features over 2000-9000 ms, min of {sys.argv[2]} runs;")
-print(f"# phasmid run s = process CPU - {float(sys.argv[3]):.3f} s start-up (1 ms of model time)")
+print("# run s: CPU time of the solve (std::clock around it; phasmid: /trajectory cpu_seconds)")
 print("# reference phasmid rtol = atol = 1e-12: " + "; ".join(
     f"{j} period {ref[j + '.period_ms']:.6f} ms, angles {ref[j + '.angle_min_deg']:.6f} / {ref[j + '.angle_max_deg']:.6f} deg"
     for j in joints))

@@ -14,6 +14,7 @@ void write_trajectory(H5Writer& w, const model::OdeModel& m, const solver::Solve
 void write_solver_stats(H5Writer& w, const solver::SolverStats& stats) {
   w.set_attribute("/trajectory", "solver_steps", static_cast<double>(stats.steps));
   w.set_attribute("/trajectory", "wall_seconds", stats.wall_seconds);
+  w.set_attribute("/trajectory", "cpu_seconds", stats.cpu_seconds);
   w.set_attribute("/trajectory", "integrators", static_cast<double>(stats.integrators));
 }
 

@@ -8,6 +8,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <ctime>
 #include <deque>
 #include <exception>
 #include <memory>
@@ -177,13 +180,18 @@ double PartSolver::export_value(size_t e, double at) const {
   return horner(coef, exports.size(), e, order, at - t_poly);
 }
 
-// Whether every x[i] is finite: x - x is 0 for a finite number and NaN for inf or NaN, so the
-// sum is 0 exactly when all are finite (no branch per entry, half the instructions of a test
-// of each).
+// Whether every x[i] is finite: its exponent bits are not all ones. Integer tests are exact in
+// any order, so the loop vectorises and has no chain of dependent additions (a sum of x - x,
+// the previous form, cost one floating-point add latency per entry).
 bool all_finite(const double* x, size_t n) {
-  double s = 0.0;
-  for (size_t i = 0; i < n; ++i) s += x[i] - x[i];
-  return s == 0.0;
+  constexpr uint64_t kExponent = 0x7ff0000000000000ull;
+  uint64_t bad = 0;
+  for (size_t i = 0; i < n; ++i) {
+    uint64_t bits;
+    std::memcpy(&bits, x + i, sizeof bits);
+    bad |= static_cast<uint64_t>((bits & kExponent) == kExponent);
+  }
+  return bad == 0;
 }
 
 // Input i of the part at time t from its owner's polynomial (windowed runs: from the snapshot
@@ -200,13 +208,29 @@ void fill_inputs(const PartSolver& ps, double t, std::vector<Scalar>& full) {
   for (size_t i = 0; i < ps.inputs.size(); ++i) full[ps.inputs[i]] = Scalar(input_value(ps, i, t));
 }
 
+// The part's inputs at time t, packed (u[i] = input i). Sequential runs read each owner's
+// polynomial here, inlined, so that the inputs' Horner chains overlap (as a call per input,
+// 4 % of the single joint's run time went to waiting on them one by one).
+void gather_inputs(const PartSolver& ps, double t, double* u) {
+  const size_t m = ps.input_from.size();
+  if (ps.run->windowed) {
+    for (size_t i = 0; i < m; ++i) u[i] = input_value(ps, i, t);
+    return;
+  }
+  for (size_t i = 0; i < m; ++i) {
+    const auto& [owner, e] = ps.input_from[i];
+    const PartSolver& o = *ps.run->parts[owner];
+    u[i] = horner(o.coef, o.exports.size(), e, o.order, t - o.t_poly);
+  }
+}
+
 int part_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* ud) {
   auto* ps = static_cast<PartSolver*>(ud);
   const double* yv = N_VGetArrayPointer(y);
   double* out = N_VGetArrayPointer(ydot);
   const size_t n = ps->states.size();
   if (ps->eq->packed()) {  // a compiled part reads its states and inputs where they are
-    for (size_t i = 0; i < ps->inputs.size(); ++i) ps->u[i] = input_value(*ps, i, t);
+    gather_inputs(*ps, t, ps->u.data());
     ps->eq->rhs_packed(t, yv, ps->u.data(), ps->run->p->data(), out);
   } else {
     fill_inputs(*ps, t, ps->yfull);
@@ -940,6 +964,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
                             const std::vector<double>& p_given, const OutputTimes& output_times,
                             const std::vector<RootSpec>& caller_roots) {
   const auto wall0 = std::chrono::steady_clock::now();
+  const std::clock_t cpu0 = std::clock();
   CommandSchedule schedule(model, p_given, output_times.back(), {});
   const std::vector<RootSpec> roots = schedule.roots(caller_roots);
   const std::vector<double> y0 = model.initial_state(schedule.p());
@@ -963,6 +988,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
   run_loop(driver, schedule, progress);
   driver.finish(schedule.p());
   res.stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  res.stats.cpu_seconds = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   return res;
 }
 

@@ -128,6 +128,9 @@ struct SolverStats {
   long error_test_failures = 0, newton_iterations = 0, newton_failures = 0, linear_setups = 0;
   long integrators = 1;  // parts integrated separately (SolverOptions::partitioning), 1: one system
   double wall_seconds = 0.0;
+  // CPU time of the process over the same span (std::clock: all its threads), the clock that
+  // Brian2's standalone runs report around their network run (docs/benchmarks.md).
+  double cpu_seconds = 0.0;
 };
 
 // A command time resolved by a model trigger during the run (model::CommandTrigger).

@@ -88,6 +88,13 @@ void expect_streamed_equals_memory(const std::string& name, double t_end_ms, sol
   expect_same_datasets(memory.path, streamed.path, kStreamBlockSamples);
   EXPECT_EQ(memory.notes, streamed.notes);
   EXPECT_EQ(io::H5Reader(streamed.path).read_double_attribute("/trajectory", "integrators"), integrators);
+  for (const Written* w : {&memory, &streamed}) {  // one thread: the solve's CPU time is at most its wall time
+    io::H5Reader f(w->path);
+    const double cpu = f.read_double_attribute("/trajectory", "cpu_seconds");
+    const double wall = f.read_double_attribute("/trajectory", "wall_seconds");
+    EXPECT_GT(cpu, 0.0) << w->path;
+    EXPECT_LE(cpu, 1.1 * wall + 0.01) << w->path;
+  }
   std::remove(memory.path.c_str());
   std::remove(streamed.path.c_str());
 }
