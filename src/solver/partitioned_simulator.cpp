@@ -209,8 +209,8 @@ void fill_inputs(const PartSolver& ps, double t, std::vector<Scalar>& full) {
 }
 
 // The part's inputs at time t, packed (u[i] = input i). Sequential runs read each owner's
-// polynomial here, inlined, so that the inputs' Horner chains overlap (as a call per input,
-// 4 % of the single joint's run time went to waiting on them one by one).
+// polynomial here, inlined, so that the inputs' Horner chains overlap rather than wait on one
+// another through a call per input.
 void gather_inputs(const PartSolver& ps, double t, double* u) {
   const size_t m = ps.input_from.size();
   if (ps.run->windowed) {
