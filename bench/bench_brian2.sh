@@ -184,11 +184,11 @@ for e in $GSL_ERRORS; do
   brian_row "Brian2 standalone GSL RKF45, abs. error $e (dt = $GSL_DT ms)" --method rkf45 --error "$e" --dt "$GSL_DT"
 done
 
-$PY - "$ROWS" "$REPEATS" "-" "$MODEL" "$JOINTS" "$TMP/fastest.txt" <<'EOF'
+$PY - "$ROWS" "$REPEATS" "$MODEL" "$JOINTS" "$TMP/fastest.txt" <<'EOF'
 import json, sys
 rows = [json.loads(l) for l in open(sys.argv[1])]
-open(sys.argv[6], "w").close()
-joints = sys.argv[5].split()
+open(sys.argv[5], "w").close()
+joints = sys.argv[4].split()
 ref = rows[0]["features"]
 def errors(r):
     """Largest-magnitude period and extremal-angle errors over the joints (None: missing)."""
@@ -199,7 +199,7 @@ def errors(r):
     except (KeyError, TypeError):
         return None
     return max(dp, key=abs), max(da, key=abs)
-print(f"# bench_brian2: {sys.argv[4]}, 9000 ms, features over 2000-9000 ms, min of {sys.argv[2]} runs;")
+print(f"# bench_brian2: {sys.argv[3]}, 9000 ms, features over 2000-9000 ms, min of {sys.argv[2]} runs;")
 print("# run s: CPU time of the solve (std::clock around it; phasmid: /trajectory cpu_seconds)")
 print("# reference phasmid rtol = atol = 1e-12: " + "; ".join(
     f"{j} period {ref[j + '.period_ms']:.6f} ms, angles {ref[j + '.angle_min_deg']:.6f} / {ref[j + '.angle_max_deg']:.6f} deg"
@@ -224,7 +224,7 @@ if shipped and bm:
     print(f"phasmid shipped / fastest matched Brian2 ({bm['label']}): {shipped['run_s'] / bm['run_s']:.2f}x the time")
 if pm and bm:
     print(f"fastest matched phasmid ({pm['label']}) / fastest matched Brian2: {pm['run_s'] / bm['run_s']:.2f}x the time")
-    with open(sys.argv[6], "w") as out:
+    with open(sys.argv[5], "w") as out:
         out.write(f"{pm['config']} {pm['cache'] or '-'} {bm['project']}\n")
 print("(matched: every period within 0.01 ms and every mean extremal angle within 0.01 deg of the reference; "
       "> 1x: phasmid is slower)")

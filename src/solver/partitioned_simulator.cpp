@@ -6,11 +6,9 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <ctime>
 #include <deque>
 #include <exception>
 #include <memory>
@@ -219,8 +217,7 @@ void gather_inputs(const PartSolver& ps, double t, double* u) {
   }
   for (size_t i = 0; i < m; ++i) {
     const auto& [owner, e] = ps.input_from[i];
-    const PartSolver& o = *ps.run->parts[owner];
-    u[i] = horner(o.coef, o.exports.size(), e, o.order, t - o.t_poly);
+    u[i] = ps.run->parts[owner]->export_value(e, t);
   }
 }
 
@@ -963,8 +960,7 @@ std::vector<double> state_atol(const model::OdeModel& model, const SolverOptions
 SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPartition& P, const SolverOptions& options,
                             const std::vector<double>& p_given, const OutputTimes& output_times,
                             const std::vector<RootSpec>& caller_roots) {
-  const auto wall0 = std::chrono::steady_clock::now();
-  const std::clock_t cpu0 = std::clock();
+  const SolveTimer timer;
   CommandSchedule schedule(model, p_given, output_times.back(), {});
   const std::vector<RootSpec> roots = schedule.roots(caller_roots);
   const std::vector<double> y0 = model.initial_state(schedule.p());
@@ -987,8 +983,7 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
   ProgressLine progress(options, schedule.t_end(), run.parts.size());
   run_loop(driver, schedule, progress);
   driver.finish(schedule.p());
-  res.stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  res.stats.cpu_seconds = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  timer.stop(res.stats);
   return res;
 }
 

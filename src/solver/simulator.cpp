@@ -9,8 +9,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
-#include <chrono>
-#include <ctime>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
@@ -508,8 +506,7 @@ std::vector<double*> WholeSystem::sens_columns() const {
 
 SolveResult Simulator::run(const std::vector<double>& p_given, const OutputTimes& output_times,
                            const std::vector<RootSpec>& roots, const std::vector<size_t>& sens_params) const {
-  const auto wall0 = std::chrono::steady_clock::now();
-  const std::clock_t cpu0 = std::clock();
+  const SolveTimer timer;
   if (p_given.size() != model_.parameters().size()) throw Error("internal: parameter vector size mismatch");
   if (output_times.empty() || output_times.front() < 0) throw Error("output times must start at t >= 0");
   const size_t ns = sens_params.size();
@@ -573,8 +570,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const OutputTimes
 
   add_counters(res.stats, session.stats());
   res.stats.sens_rhs_evals = d.sens_evals;
-  res.stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  res.stats.cpu_seconds = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  timer.stop(res.stats);
   return res;
 }
 

@@ -2,6 +2,8 @@
 // CVODES driver (AMICI's "Solver"), kept apart from the model: options struct with defaults,
 // one run() that integrates an OdeModel over output times, locates events by root finding,
 // and optionally integrates forward sensitivities with respect to chosen parameters.
+#include <chrono>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -131,6 +133,20 @@ struct SolverStats {
   // CPU time of the process over the same span (std::clock: all its threads), the clock that
   // Brian2's standalone runs report around their network run (docs/benchmarks.md).
   double cpu_seconds = 0.0;
+};
+
+// The wall and process CPU time of a solve, from construction to stop(), as SolverStats keeps
+// them (both drivers time the same span: schedule, integration and output).
+class SolveTimer {
+ public:
+  void stop(SolverStats& s) const {
+    s.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
+    s.cpu_seconds = static_cast<double>(std::clock() - cpu0_) / CLOCKS_PER_SEC;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point wall0_ = std::chrono::steady_clock::now();
+  std::clock_t cpu0_ = std::clock();
 };
 
 // A command time resolved by a model trigger during the run (model::CommandTrigger).
