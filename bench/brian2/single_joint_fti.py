@@ -6,6 +6,7 @@ Brian2's C++ standalone device.
 Usage (Debian's Python: apt-get install -y python3-brian python3-numpy libgsl-dev):
     /usr/bin/python3 bench/brian2/single_joint_fti.py --method rk4 --dt 0.01
     /usr/bin/python3 bench/brian2/single_joint_fti.py --method rkf45 --error 1e-3 --dt 0.1 --repeats 3
+    (--method: rk4, or one of GSL_METHODS below: rkf45, rkck, rk8pd, rk2)
 
 Prints one JSON object: the compile time (code generation and C++ build) apart from the run
 times (the standalone binary's own CPU clock around the network run), and the features of
@@ -273,6 +274,9 @@ def features(t, ang, omg, discard_ms):
 # GSL steps allowed per clock dt (Brian2's default, 100, makes tight error bounds fail at
 # dt = 1 ms during MN spikes).
 GSL_MAX_STEPS = 100000
+# Brian2's adaptive GSL steppers (method "gsl_<name>"): Runge-Kutta-Fehlberg 4(5), Cash-Karp
+# 4(5), Prince-Dormand 8(9) and the embedded 2(3) pair.
+GSL_METHODS = ["rkf45", "rkck", "rk8pd", "rk2"]
 
 
 class stdout_to_stderr:
@@ -311,7 +315,7 @@ def patch_gsl_standalone():
 
 def parse_args(doc, argv=None):
     ap = argparse.ArgumentParser(description=doc.split("\n\n")[0])
-    ap.add_argument("--method", choices=["rk4", "rkf45"], default="rk4")
+    ap.add_argument("--method", choices=["rk4"] + GSL_METHODS, default="rk4")
     ap.add_argument("--dt", type=float, default=0.01, help="clock dt, ms (RK4 step; GSL: output interval)")
     ap.add_argument("--error", type=float, default=1e-3, help="GSL absolute error bound (all variables)")
     ap.add_argument("--sample-dt", type=float, default=0.1, help="angle sampling interval, ms")
@@ -340,7 +344,7 @@ def simulate(a, eqs, init, channels, name):
     if a.method == "rk4":
         method, options = "rk4", {}
     else:
-        method, options = "gsl_rkf45", {"absolute_error": a.error, "max_steps": GSL_MAX_STEPS}
+        method, options = "gsl_" + a.method, {"absolute_error": a.error, "max_steps": GSL_MAX_STEPS}
     G = b2.NeuronGroup(1, eqs, method=method, method_options=options, name=name)
     for k, v in init.items():
         setattr(G, k, v)
@@ -352,7 +356,7 @@ def simulate(a, eqs, init, channels, name):
         b2.device.build(directory=directory, compile=True, run=False, with_output=False)
     res = {"method": a.method, "dt_ms": a.dt, "compile_s": time.perf_counter() - t0, "run_cpu_s": [],
            "process_cpu_s": [], "directory": directory}
-    if a.method == "rkf45":
+    if a.method in GSL_METHODS:
         res["absolute_error"] = a.error
     for _ in range(a.repeats):
         r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
