@@ -5,6 +5,10 @@
    save from Python against `phasmid simulate` minus the process start (`phasmid --version`).
 2. 100 short runs (100 ms each) in a Python loop against the same loop in C++
    (bench/bench_run_loop.cpp).
+3. Two single-joint simulations on two Python threads against the same two one after the
+   other (wall time): about 0.5 with two free cores, since every run releases the GIL; 1.0
+   would mean the runs are serialised. Printed only: it measures the machine's free cores as
+   much as phasmid.
 
 Each figure is the median of REPEATS repetitions, as wall time and as CPU time (user + system;
 on a shared machine the wall time also measures the other jobs). Prints the overhead as a
@@ -86,10 +90,28 @@ def loop(n=100, t_end_ms=100.0):
     return line("Python loop vs C++ loop", py, cpp)
 
 
+def two_threads():
+    from concurrent.futures import ThreadPoolExecutor
+    s = phasmid.load(CONFIG)
+
+    def serial():
+        s.simulate()
+        s.simulate()
+
+    def parallel():
+        with ThreadPoolExecutor(2) as pool:
+            list(pool.map(lambda _: s.simulate(), range(2)))
+
+    ser, par = median_of(serial), median_of(parallel)
+    print("two runs of 9000 ms on two threads against the same two in sequence:")
+    print("  wall %.4f s vs %.4f s: ratio %.3f" % (par[0], ser[0], par[0] / ser[0]))
+
+
 if __name__ == "__main__":
     print("load average %.1f on %d cores" % (os.getloadavg()[0], len(os.sched_getaffinity(0))))
     with tempfile.TemporaryDirectory(prefix="phasmid-bench-") as tmp:
         ratios = [single_run(tmp), loop()]
+    two_threads()
     worst_cpu, worst_wall = max(r[0] for r in ratios), max(r[1] for r in ratios)
     print("largest overhead: cpu %+.1f %%, wall %+.1f %% (target < 5 %%): %s" % (
         100 * (worst_cpu - 1), 100 * (worst_wall - 1), "ok" if worst_cpu < 1.05 else "ABOVE"))
