@@ -23,6 +23,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from concurrent.futures import ThreadPoolExecutor
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 BUILD = os.path.abspath(sys.argv[1]) if len(sys.argv) > 1 else os.path.join(ROOT, "build")
@@ -91,7 +92,6 @@ def loop(n=100, t_end_ms=100.0):
 
 
 def two_threads():
-    from concurrent.futures import ThreadPoolExecutor
     s = phasmid.load(CONFIG)
 
     def serial():
