@@ -10,6 +10,9 @@
 #   NEURONS_TOLS: rows with partitioned = "neurons" (Dormand-Prince on the motoneurons, muscles
 #   and mechanics at each of these tolerances, CVODES BDF on the CPG and interneurons at
 #   stiff_part_tol = NEURONS_STIFF_TOL; docs/solver.md "Integrators"); default "1e-4 1e-5", 1e-7.
+#   NEURONS_STIFF_ATOL (default "mV = 1e-4"; empty: none): each compiled NEURONS_TOLS row once
+#   more with stiff_part_atol_by_unit = { NEURONS_STIFF_ATOL } (docs/benchmarks.md "The network
+#   part's absolute tolerance").
 #   COMPILED_RHS=1 (default): the shipped row and the NEURONS_TOLS rows once more with
 #   compiled_rhs = true (model/compiled_rhs.hpp); their first run, with an empty cache, compiles,
 #   and its extra CPU time is the row's "compile s" (children's CPU counts), as Brian2's is.
@@ -51,6 +54,7 @@ PHASMID_METHODS=${PHASMID_METHODS:-"cvodes_bdf erk_dp5"}
 PHASMID_TOLS=${PHASMID_TOLS:-"1e-4 1e-5 1e-6 1e-7 1e-8 1e-9 1e-10"}
 NEURONS_TOLS=${NEURONS_TOLS-"1e-4 1e-5"}
 NEURONS_STIFF_TOL=${NEURONS_STIFF_TOL:-1e-7}
+NEURONS_STIFF_ATOL=${NEURONS_STIFF_ATOL-mV = 1e-4}
 COMPILED_RHS=${COMPILED_RHS:-1}
 RK4_DTS=${RK4_DTS:-"0.05 0.025 0.01 0.005"}
 GSL_ERRORS=${GSL_ERRORS:-"1e-2 1e-3 1e-4 1e-5 1e-6"}
@@ -182,6 +186,10 @@ for tol in $NEURONS_TOLS; do
   if [ "$COMPILED_RHS" = 1 ]; then
     phasmid_row "$label, compiled_rhs" "$tol" erk_dp5 \
       "partitioned = \"neurons\"\\nstiff_part_tol = $NEURONS_STIFF_TOL\\ncompiled_rhs = true"
+    if [ -n "$NEURONS_STIFF_ATOL" ]; then
+      phasmid_row "$label, compiled_rhs, network part { $NEURONS_STIFF_ATOL }" "$tol" erk_dp5 \
+        "partitioned = \"neurons\"\\nstiff_part_tol = $NEURONS_STIFF_TOL\\ncompiled_rhs = true\\nstiff_part_atol_by_unit = { $NEURONS_STIFF_ATOL }"
+    fi
   fi
 done
 for dt in $RK4_DTS; do

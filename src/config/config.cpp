@@ -41,6 +41,21 @@ std::unique_ptr<scenario::Scenario> make_from_model_section(const Config& cfg) {
   return kind->make(scenario::ModelSection(cfg, mt));
 }
 
+// A [simulation] table of unit = absolute tolerance (atol_by_unit, stiff_part_atol_by_unit).
+void unit_tolerances(const Config& cfg, const toml::table& st, const char* key,
+                     std::vector<std::pair<std::string, double>>& out) {
+  const toml::node* n = st.get(key);
+  if (!n) return;
+  const toml::table* t = n->as_table();
+  if (!t) throw Error(where(cfg, *n) + ": '" + key + "' must be a table of unit = tolerance, e.g. { mV = 1e-4 }");
+  out.clear();
+  for (const auto& [unit, value] : *t) {
+    const double v = number(cfg, value, key);
+    if (!(v > 0)) throw Error(where(cfg, value) + ": '" + key + "' tolerances must be > 0");
+    out.emplace_back(std::string(unit.str()), v);
+  }
+}
+
 }  // namespace
 
 std::unique_ptr<scenario::Scenario> build_scenario(const Config& cfg, const std::vector<std::string>& sets) {
@@ -78,7 +93,7 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
                 " (its own parameters set the run; docs/config.md)");
   check_keys(cfg, *st, "simulation", {"t_end_ms", "output_dt_ms", "discard_ms", "rtol", "atol", "linear_solver", "max_step_ms",
                                               "partitioned", "integrator", "threads", "thread_window_ms", "atol_by_unit",
-                                              "stiff_part_tol", "compiled_rhs"});
+                                              "stiff_part_tol", "stiff_part_atol_by_unit", "compiled_rhs"});
   auto get = [&](const char* key, double& out, double lo) {
     if (const toml::node* n = st->get(key)) {
       out = number(cfg, *n, key);
@@ -113,16 +128,8 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
     s.solver.threads = static_cast<int>(*v);
   }
   get("thread_window_ms", s.solver.window_ms, 0);
-  if (const toml::node* n = st->get("atol_by_unit")) {
-    const toml::table* t = n->as_table();
-    if (!t) throw Error(where(cfg, *n) + ": 'atol_by_unit' must be a table of unit = tolerance, e.g. { mV = 1e-4 }");
-    s.solver.atol_by_unit.clear();
-    for (const auto& [unit, value] : *t) {
-      const double v = number(cfg, value, "atol_by_unit");
-      if (!(v > 0)) throw Error(where(cfg, value) + ": 'atol_by_unit' tolerances must be > 0");
-      s.solver.atol_by_unit.emplace_back(std::string(unit.str()), v);
-    }
-  }
+  unit_tolerances(cfg, *st, "atol_by_unit", s.solver.atol_by_unit);
+  unit_tolerances(cfg, *st, "stiff_part_atol_by_unit", s.solver.stiff_part_atol_by_unit);
   if (const toml::node* n = st->get("partitioned")) {
     if (n->is_boolean()) {
       s.solver.partitioning = *n->value<bool>() ? solver::Partitioning::On : solver::Partitioning::Off;

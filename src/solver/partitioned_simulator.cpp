@@ -345,7 +345,7 @@ SolverOptions options_of_part(const SolverOptions& options, bool stiff) {
   SolverOptions o = options;
   o.integrator = IntegratorKind::Bdf;
   o.rtol = o.atol = options.stiff_part_tol;
-  o.atol_by_unit.clear();
+  o.atol_by_unit = options.stiff_part_atol_by_unit;
   return o;
 }
 
@@ -939,12 +939,17 @@ void check_atol_units(const model::OdeModel& model, const SolverOptions& options
   std::vector<std::string> units;  // in the order of their first state
   for (const model::StateInfo& s : model.states())
     if (std::find(units.begin(), units.end(), s.unit) == units.end()) units.push_back(s.unit);
-  for (const auto& entry : options.atol_by_unit) {
-    if (std::find(units.begin(), units.end(), entry.first) != units.end()) continue;
-    std::string list;
-    for (const std::string& u : units) list += (list.empty() ? "'" : ", '") + u + "'";
-    throw Error("[simulation] atol_by_unit: no state of this model has unit '" + entry.first + "' (its units: " + list + ")");
-  }
+  auto check = [&](const char* key, const std::vector<std::pair<std::string, double>>& by_unit) {
+    for (const auto& entry : by_unit) {
+      if (std::find(units.begin(), units.end(), entry.first) != units.end()) continue;
+      std::string list;
+      for (const std::string& u : units) list += (list.empty() ? "'" : ", '") + u + "'";
+      throw Error(std::string("[simulation] ") + key + ": no state of this model has unit '" + entry.first +
+                  "' (its units: " + list + ")");
+    }
+  };
+  check("atol_by_unit", options.atol_by_unit);
+  check("stiff_part_atol_by_unit", options.stiff_part_atol_by_unit);
 }
 
 // The absolute tolerance of each of `states` (SolverOptions::atol_by_unit).

@@ -77,6 +77,20 @@ TEST(DefaultIntegration, SingleJointNeuronsPartitionMatchesTheTightReference) {
   expect_default_matches_reference(cfg, "single joint (spiking, neurons partition)", false);
 }
 
+// The same with the network part's potentials at atol 1e-4 mV (stiff_part_atol_by_unit; its rtol
+// and other atol stay 1e-7): the middle of the interval of values that keep the gate
+// (docs/benchmarks.md "The network part's absolute tolerance").
+TEST(DefaultIntegration, SingleJointNeuronsPartitionLooserNetworkPotentialsMatchTheTightReference) {
+  auto cfg = config::parse_config(
+      "[model]\ntype = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\n"
+      "[simulation]\nt_end_ms = 9000\ndiscard_ms = 2000\nintegrator = \"erk_dp5\"\nrtol = 1e-4\natol = 1e-4\n"
+      "partitioned = \"neurons\"\nstiff_part_tol = 1e-7\nstiff_part_atol_by_unit = { mV = 1e-4 }\n",
+      "single_joint_neurons_mv.toml");
+  auto scenario = config::build_scenario(cfg);
+  ASSERT_EQ(config::simulation_settings(cfg, scenario.get()).solver.stiff_part_atol_by_unit.size(), 1u);
+  expect_default_matches_reference(cfg, "single joint (spiking, neurons partition, network mV atol 1e-4)", false);
+}
+
 TEST(DefaultIntegration, RateThreeLegsMatchTheTightReference) {
   auto cfg = config::parse_config(
       "[model]\ntype = \"three_legs\"\ngait = \"tetrapod\"\nmotoneuron = \"rate\"\n"

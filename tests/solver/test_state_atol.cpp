@@ -1,7 +1,8 @@
 // Absolute tolerances by a state's unit ([simulation] atol_by_unit, SolverOptions::atol_by_unit):
 // the integrators take them (a looser one for the membrane potentials takes fewer steps, the
 // same value as atol reproduces the scalar run bit for bit), in the whole-system and the
-// partitioned run; runs with sensitivities and bad values are refused.
+// partitioned run, and for the network part of the neurons partition on its own
+// (stiff_part_atol_by_unit); runs with sensitivities and bad values are refused.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -56,6 +57,43 @@ TEST(StateAtol, AUnitNoStateHasIsAnError) {
   }
 }
 
+namespace {
+
+// The single joint, spiking, partitioned = "neurons": its network part runs CVODES BDF at
+// stiff_part_tol, with stiff_part_atol_by_unit as its atol by unit.
+solver::SolveResult run_neurons_partition(const std::vector<std::pair<std::string, double>>& stiff_by_unit) {
+  auto cfg = config::parse_config(
+      "[model]\ntype = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\n"
+      "[simulation]\nintegrator = \"erk_dp5\"\nrtol = 1e-4\natol = 1e-4\npartitioned = \"neurons\"\n",
+      "j.toml");
+  auto m = config::build_model(cfg);
+  solver::SolverOptions o = config::simulation_settings(cfg).solver;
+  o.stiff_part_atol_by_unit = stiff_by_unit;
+  return solver::Simulator(*m, o).run(m->parameters().values(), solver::output_grid(2000.0, 5.0));
+}
+
+}  // namespace
+
+// The network part of the neurons partition takes its own atol by unit: stiff_part_tol itself
+// as the unit's value reproduces the run bit for bit; a looser one for the potentials takes
+// fewer steps (the spiking part keeps rtol, atol); a unit no state has is an error naming the key.
+TEST(StateAtol, TheNeuronsPartitionsNetworkPartTakesItsOwn) {
+  const solver::SolveResult plain = run_neurons_partition({});
+  const solver::SolveResult same = run_neurons_partition({{"mV", 1e-7}, {"1", 1e-7}});
+  const solver::SolveResult loose = run_neurons_partition({{"mV", 1e-4}});
+  EXPECT_EQ(same.stats.steps, plain.stats.steps);
+  EXPECT_EQ(same.y, plain.y);
+  EXPECT_LT(loose.stats.steps, plain.stats.steps * 0.95);
+  try {
+    run_neurons_partition({{"rad/ms", 1e-6}});
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("stiff_part_atol_by_unit: no state of this model has unit 'rad/ms'"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(StateAtol, RefusedWithSensitivities) {
   model::LegOptions l;
   l.motoneuron = model::MotoneuronModel::Rate;
@@ -77,4 +115,15 @@ TEST(StateAtol, ConfigKey) {
   EXPECT_THROW(config::simulation_settings(config::parse_config(head + "atol_by_unit = { mV = 0 }\n", "b.toml")), Error);
   EXPECT_THROW(config::simulation_settings(config::parse_config(head + "atol_by_unit = 1e-5\n", "c.toml")), Error);
   EXPECT_THROW(config::simulation_settings(config::parse_config(head + "threads = 0\n", "d.toml")), Error);
+  const auto t = config::simulation_settings(config::parse_config(head + "stiff_part_atol_by_unit = { mV = 1e-4 }\n", "e.toml"));
+  ASSERT_EQ(t.solver.stiff_part_atol_by_unit.size(), 1u);
+  EXPECT_EQ(t.solver.stiff_part_atol_by_unit[0], (std::pair<std::string, double>("mV", 1e-4)));
+  EXPECT_TRUE(t.solver.atol_by_unit.empty());
+  try {
+    config::simulation_settings(config::parse_config(head + "stiff_part_atol_by_unit = { mV = -1 }\n", "f.toml"));
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("f.toml:5"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'stiff_part_atol_by_unit' tolerances must be > 0"), std::string::npos) << e.what();
+  }
 }
