@@ -65,13 +65,22 @@ TEST(DefaultIntegration, SingleJointAsShippedMatchesTheTightReference) {
 // "Spiking cells apart"): the motoneurons, muscles and mechanics on Dormand-Prince at 1e-4, the
 // CPG and interneurons on CVODES BDF at stiff_part_tol 1e-7; period and extremal angles within
 // 0.01 ms and 0.01 deg. The flexion and extension durations (burst-located) are 0.19 ms off at
-// this tolerance and within the gate only from 1e-6: not gated here.
-TEST(DefaultIntegration, SingleJointNeuronsPartitionMatchesTheTightReference) {
-  auto cfg = config::parse_config(
+// this tolerance and within the gate only from 1e-6: not gated here. `extra`: more
+// [simulation] lines.
+namespace {
+
+config::Config single_joint_neurons_partition(const std::string& extra) {
+  return config::parse_config(
       "[model]\ntype = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\n"
       "[simulation]\nt_end_ms = 9000\ndiscard_ms = 2000\nintegrator = \"erk_dp5\"\nrtol = 1e-4\natol = 1e-4\n"
-      "partitioned = \"neurons\"\nstiff_part_tol = 1e-7\n",
+      "partitioned = \"neurons\"\nstiff_part_tol = 1e-7\n" + extra,
       "single_joint_neurons.toml");
+}
+
+}  // namespace
+
+TEST(DefaultIntegration, SingleJointNeuronsPartitionMatchesTheTightReference) {
+  auto cfg = single_joint_neurons_partition("");
   auto scenario = config::build_scenario(cfg);
   ASSERT_EQ(config::simulation_settings(cfg, scenario.get()).solver.partitioning, solver::Partitioning::Neurons);
   expect_default_matches_reference(cfg, "single joint (spiking, neurons partition)", false);
@@ -81,11 +90,7 @@ TEST(DefaultIntegration, SingleJointNeuronsPartitionMatchesTheTightReference) {
 // and other atol stay 1e-7): the middle of the interval of values that keep the gate
 // (docs/benchmarks.md "The network part's absolute tolerance").
 TEST(DefaultIntegration, SingleJointNeuronsPartitionLooserNetworkPotentialsMatchTheTightReference) {
-  auto cfg = config::parse_config(
-      "[model]\ntype = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\n"
-      "[simulation]\nt_end_ms = 9000\ndiscard_ms = 2000\nintegrator = \"erk_dp5\"\nrtol = 1e-4\natol = 1e-4\n"
-      "partitioned = \"neurons\"\nstiff_part_tol = 1e-7\nstiff_part_atol_by_unit = { mV = 1e-4 }\n",
-      "single_joint_neurons_mv.toml");
+  auto cfg = single_joint_neurons_partition("stiff_part_atol_by_unit = { mV = 1e-4 }\n");
   auto scenario = config::build_scenario(cfg);
   ASSERT_EQ(config::simulation_settings(cfg, scenario.get()).solver.stiff_part_atol_by_unit.size(), 1u);
   expect_default_matches_reference(cfg, "single joint (spiking, neurons partition, network mV atol 1e-4)", false);
