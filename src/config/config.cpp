@@ -148,6 +148,11 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
     if (!n->is_boolean()) throw Error(where(cfg, *n) + ": 'compiled_rhs' must be true or false");
     s.solver.compiled_rhs = *n->value<bool>();
   }
+  // A setting that would change nothing is refused rather than ignored.
+  if (const toml::node* n = st->get("stiff_part_atol_by_unit");
+      n && (s.solver.partitioning != solver::Partitioning::Neurons || !solver::is_explicit_rk(s.solver.integrator)))
+    throw Error(where(cfg, *n) + ": 'stiff_part_atol_by_unit' applies only with partitioned = \"neurons\" and an "
+                "explicit integrator, whose network parts run CVODES BDF (docs/solver.md \"Integrators\")");
   return s;
 }
 

@@ -115,15 +115,29 @@ TEST(StateAtol, ConfigKey) {
   EXPECT_THROW(config::simulation_settings(config::parse_config(head + "atol_by_unit = { mV = 0 }\n", "b.toml")), Error);
   EXPECT_THROW(config::simulation_settings(config::parse_config(head + "atol_by_unit = 1e-5\n", "c.toml")), Error);
   EXPECT_THROW(config::simulation_settings(config::parse_config(head + "threads = 0\n", "d.toml")), Error);
-  const auto t = config::simulation_settings(config::parse_config(head + "stiff_part_atol_by_unit = { mV = 1e-4 }\n", "e.toml"));
+  const std::string neurons = "partitioned = \"neurons\"\nintegrator = \"erk_dp5\"\n";
+  const auto t = config::simulation_settings(
+      config::parse_config(head + neurons + "stiff_part_atol_by_unit = { mV = 1e-4 }\n", "e.toml"));
   ASSERT_EQ(t.solver.stiff_part_atol_by_unit.size(), 1u);
   EXPECT_EQ(t.solver.stiff_part_atol_by_unit[0], (std::pair<std::string, double>("mV", 1e-4)));
   EXPECT_TRUE(t.solver.atol_by_unit.empty());
   try {
-    config::simulation_settings(config::parse_config(head + "stiff_part_atol_by_unit = { mV = -1 }\n", "f.toml"));
+    config::simulation_settings(config::parse_config(head + neurons + "stiff_part_atol_by_unit = { mV = -1 }\n", "f.toml"));
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("f.toml:5"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("f.toml:7"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("'stiff_part_atol_by_unit' tolerances must be > 0"), std::string::npos) << e.what();
+  }
+  // Without the neurons partition, or with BDF everywhere, it would change nothing: refused.
+  for (const std::string& other : {std::string("partitioned = true\nintegrator = \"erk_dp5\"\n"),
+                                   std::string("partitioned = \"neurons\"\nintegrator = \"cvodes_bdf\"\n")}) {
+    try {
+      config::simulation_settings(config::parse_config(head + other + "stiff_part_atol_by_unit = { mV = 1e-4 }\n", "g.toml"));
+      ADD_FAILURE() << "no error for " << other;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("g.toml:7: 'stiff_part_atol_by_unit' applies only with partitioned = \"neurons\""),
+                std::string::npos)
+          << e.what();
+    }
   }
 }
