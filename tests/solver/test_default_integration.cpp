@@ -52,23 +52,12 @@ void expect_default_matches_reference(const config::Config& cfg, const char* wha
   EXPECT_GE(gated, 4u);
 }
 
-}  // namespace
-
-TEST(DefaultIntegration, SingleJointAsShippedMatchesTheTightReference) {
-  auto cfg = config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/single_joint_fti.toml");
-  auto scenario = config::build_scenario(cfg);
-  EXPECT_EQ(config::simulation_settings(cfg, scenario.get()).solver.integrator, solver::IntegratorKind::ErkDp5);
-  expect_default_matches_reference(cfg, "single joint (spiking)");
-}
-
 // The single joint's fastest setting at the Brian2 comparison's gate (docs/benchmarks.md
 // "Spiking cells apart"): the motoneurons, muscles and mechanics on Dormand-Prince at 1e-4, the
 // CPG and interneurons on CVODES BDF at stiff_part_tol 1e-7; period and extremal angles within
 // 0.01 ms and 0.01 deg. The flexion and extension durations (burst-located) are 0.19 ms off at
 // this tolerance and within the gate only from 1e-6: not gated here. `extra`: more
 // [simulation] lines.
-namespace {
-
 config::Config single_joint_neurons_partition(const std::string& extra) {
   return config::parse_config(
       "[model]\ntype = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\n"
@@ -78,6 +67,13 @@ config::Config single_joint_neurons_partition(const std::string& extra) {
 }
 
 }  // namespace
+
+TEST(DefaultIntegration, SingleJointAsShippedMatchesTheTightReference) {
+  auto cfg = config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/single_joint_fti.toml");
+  auto scenario = config::build_scenario(cfg);
+  EXPECT_EQ(config::simulation_settings(cfg, scenario.get()).solver.integrator, solver::IntegratorKind::ErkDp5);
+  expect_default_matches_reference(cfg, "single joint (spiking)");
+}
 
 TEST(DefaultIntegration, SingleJointNeuronsPartitionMatchesTheTightReference) {
   auto cfg = single_joint_neurons_partition("");

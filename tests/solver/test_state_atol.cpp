@@ -29,6 +29,19 @@ solver::SolveResult run_leg(solver::Partitioning partitioning, const std::vector
   return solver::Simulator(*m, o).run(m->parameters().values(), solver::output_grid(1500.0, 5.0));
 }
 
+// The single joint, spiking, partitioned = "neurons": its network part runs CVODES BDF at
+// stiff_part_tol, with stiff_part_atol_by_unit as its atol by unit.
+solver::SolveResult run_neurons_partition(const std::vector<std::pair<std::string, double>>& stiff_by_unit) {
+  auto cfg = config::parse_config(
+      "[model]\ntype = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\n"
+      "[simulation]\nintegrator = \"erk_dp5\"\nrtol = 1e-4\natol = 1e-4\npartitioned = \"neurons\"\n",
+      "j.toml");
+  auto m = config::build_model(cfg);
+  solver::SolverOptions o = config::simulation_settings(cfg).solver;
+  o.stiff_part_atol_by_unit = stiff_by_unit;
+  return solver::Simulator(*m, o).run(m->parameters().values(), solver::output_grid(2000.0, 5.0));
+}
+
 }  // namespace
 
 TEST(StateAtol, LooserPotentialsTakeFewerStepsAndAtolItselfChangesNothing) {
@@ -56,23 +69,6 @@ TEST(StateAtol, AUnitNoStateHasIsAnError) {
     }
   }
 }
-
-namespace {
-
-// The single joint, spiking, partitioned = "neurons": its network part runs CVODES BDF at
-// stiff_part_tol, with stiff_part_atol_by_unit as its atol by unit.
-solver::SolveResult run_neurons_partition(const std::vector<std::pair<std::string, double>>& stiff_by_unit) {
-  auto cfg = config::parse_config(
-      "[model]\ntype = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\n"
-      "[simulation]\nintegrator = \"erk_dp5\"\nrtol = 1e-4\natol = 1e-4\npartitioned = \"neurons\"\n",
-      "j.toml");
-  auto m = config::build_model(cfg);
-  solver::SolverOptions o = config::simulation_settings(cfg).solver;
-  o.stiff_part_atol_by_unit = stiff_by_unit;
-  return solver::Simulator(*m, o).run(m->parameters().values(), solver::output_grid(2000.0, 5.0));
-}
-
-}  // namespace
 
 // The network part of the neurons partition takes its own atol by unit: stiff_part_tol itself
 // as the unit's value reproduces the run bit for bit; a looser one for the potentials takes
