@@ -3,7 +3,7 @@
 // walking). Usage:
 //   bench_walking [T_END_MS=9000] [models=joint,leg,three] [dense|band|klu|auto]
 //                 [motoneurons=spiking,rate] [RTOL=1e-6] [kernels=phasmid[,sundials]]
-//                 [integration=parts[,whole]]
+//                 [integration=parts[,neurons][,whole]]
 // Prints one line per model and motoneuron formulation (Hodgkin-Huxley "spiking" MNs or the
 // "rate" formulation, docs/model.md): states, simulated ms, wall s, steps, RHS and Jacobian
 // evaluations, the ratio to the 2013 time scaled to the simulated duration, and gait features
@@ -14,12 +14,13 @@
 // baseline of solver/serial_kernels.hpp. `integration=parts,whole` adds a row per model
 // integrated as one system ("[whole]", Partitioning::Off; "parts" forces On), the baseline of
 // the partitioned integration (solver/partitioned_simulator.hpp; the single joint is one part
-// either way). Times are the best of BENCH_REPEATS (default 3) runs.
+// either way; "neurons": Partitioning::Neurons, the spiking cells apart from their networks, "[neurons]"). Times are the best of BENCH_REPEATS (default 3) runs.
 // Environment: BENCH_MAXORD=q limits the BDF order,
 // BENCH_STALD=1 switches on CVODES' stability limit detection (both measured, not adopted),
 // BENCH_INTEGRATOR=name selects the integrator ([simulation] integrator names: erk_dp5, ...),
 // BENCH_THREADS, BENCH_WINDOW_MS, BENCH_WINDOW_ORDER, BENCH_LOOK_AHEAD the partitioned run's
 // threads and window (SolverOptions::threads, window_ms, window_order, window_look_ahead),
+// BENCH_STIFF_TOL the neurons partition's network parts' tolerance (SolverOptions::stiff_part_tol),
 // BENCH_ATOL_UNITS="1=1e-6,mV=1e-5" the absolute tolerances by unit
 // (SolverOptions::atol_by_unit). CPU s is the process's, all threads.
 #include <algorithm>
@@ -51,6 +52,7 @@ int main(int argc, char** argv) {
   if (const char* e = std::getenv("BENCH_MAXORD")) so.max_order = std::atoi(e);
   if (std::getenv("BENCH_STALD")) so.stability_limit_detection = true;
   if (const char* e = std::getenv("BENCH_THREADS")) so.threads = std::atoi(e);
+  if (const char* e = std::getenv("BENCH_STIFF_TOL")) so.stiff_part_tol = std::atof(e);
   if (const char* e = std::getenv("BENCH_WINDOW_MS")) so.window_ms = std::atof(e);
   if (const char* e = std::getenv("BENCH_LOOK_AHEAD")) so.window_look_ahead = std::atoi(e);
   if (const char* e = std::getenv("BENCH_WINDOW_ORDER")) so.window_order = std::atoi(e);
@@ -89,7 +91,7 @@ int main(int argc, char** argv) {
     if (which.find(c.key) == std::string::npos) continue;
     for (const char* form : {"spiking", "rate"})
     for (const char* kern : {"phasmid", "sundials"})
-    for (const char* integ : {"parts", "whole"}) {
+    for (const char* integ : {"parts", "neurons", "whole"}) {
       if (formulations.find(form) == std::string::npos || kernels.find(kern) == std::string::npos ||
           integrations.find(integ) == std::string::npos)
         continue;
@@ -97,7 +99,9 @@ int main(int argc, char** argv) {
       std::unique_ptr<model::NetworkModel> m = bench::build_walking_model(c.key, mn);
       solver::SolverOptions sok = so;
       if (std::string(kern) == "sundials") sok.vector_kernels = solver::VectorKernels::Sundials;
-      sok.partitioning = std::string(integ) == "parts" ? solver::Partitioning::On : solver::Partitioning::Off;
+      sok.partitioning = std::string(integ) == "parts"     ? solver::Partitioning::On
+                         : std::string(integ) == "neurons" ? solver::Partitioning::Neurons
+                                                           : solver::Partitioning::Off;
       solver::Simulator sim(*m, sok);
       // Best of `repeats` runs: single timings on this VM scatter by up to 1.7x (docs/benchmarks.md).
       double wall = 1e300, cpu = 1e300;
@@ -116,7 +120,7 @@ int main(int argc, char** argv) {
       for (auto& x : features::compute_features(*m, r, fo)) f[x.name] = x.value;
       auto get = [&](const char* k) { return f.count(k) ? f[k] : NAN; };
       const std::string label = std::string(c.label) + " " + form + (std::string(kern) == "sundials" ? " [sun]" : "") +
-                                (std::string(integ) == "whole" ? " [whole]" : "");
+                                (std::string(integ) == "parts" ? "" : " [" + std::string(integ) + "]");
       std::printf("%-38s %7zu %8.0f %8.2f %8.2f %8ld %9ld %7ld %14.1f %8.3f %8.1f %7.3f %7.3f\n", label.c_str(),
                   m->num_states(), t_end, wall, cpu, r.stats.steps, r.stats.rhs_evals, r.stats.jac_evals, ref, wall / ref,
                   f.count("middle.step_period_ms") ? f["middle.step_period_ms"] : get("period_ms"), get("phase_lag.hind_to_middle"), get("phase_lag.middle_to_front"));
