@@ -238,26 +238,19 @@ std::vector<double> reference(Problem& P) {
   return out;
 }
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  for (std::string x; std::getline(ss, x, ',');) out.push_back(x);
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::string which = argc > 1 ? argv[1] : "joint";
-  const auto tols = split(argc > 2 ? argv[2] : "1e-4,1e-5,1e-6");
-  const auto methods = split(argc > 3 ? argv[3] : "dp5,lawson,rk4d,exprk4d");
+  const auto tols = bench::split_list(argc > 2 ? argv[2] : "1e-4,1e-5,1e-6");
+  const auto methods = bench::split_list(argc > 3 ? argv[3] : "dp5,lawson,rk4d,exprk4d");
   std::unique_ptr<model::NetworkModel> m = bench::build_walking_model(which, model::MotoneuronModel::Spiking);
   Problem P{*m, m->parameters().values(), m->num_states(), m->joints().back().angle_state, {}};
   P.stops = m->breakpoints(P.p, kEnd);
   for (double t = kCheckEvery; t <= kEnd; t += kCheckEvery) P.stops.push_back(t);
   std::sort(P.stops.begin(), P.stops.end());
   P.stops.erase(std::unique(P.stops.begin(), P.stops.end()), P.stops.end());
-  if (const char* u = std::getenv("BENCH_L_UNITS")) P.units = split(u);
+  if (const char* u = std::getenv("BENCH_L_UNITS")) P.units = bench::split_list(u);
   const std::vector<double> ref = reference(P);
   std::printf("| method | tol | steps | rejected | evaluations | max angle err deg (checkpoints) |\n|---|---:|---:|---:|---:|---:|\n");
   for (const auto& method : methods)

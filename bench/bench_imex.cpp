@@ -115,20 +115,13 @@ Features run(const model::NetworkModel& m, const std::string& method, double tol
   return f;
 }
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  for (std::string x; std::getline(ss, x, ',');) out.push_back(x);
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::string which = argc > 1 ? argv[1] : "joint";
   const model::MotoneuronModel mn = model::parse_motoneuron_model(argc > 2 ? argv[2] : "spiking");
-  const auto tols = split(argc > 3 ? argv[3] : "1e-4,1e-5,1e-6");
-  const auto methods = split(argc > 4 ? argv[4] : "dp5,ark4,ark5,ark4v,ark5v");
+  const auto tols = bench::split_list(argc > 3 ? argv[3] : "1e-4,1e-5,1e-6");
+  const auto methods = bench::split_list(argc > 4 ? argv[4] : "dp5,ark4,ark5,ark4v,ark5v");
   const int repeats = std::getenv("BENCH_REPEATS") ? std::max(1, std::atoi(std::getenv("BENCH_REPEATS"))) : 3;
   std::unique_ptr<model::NetworkModel> m = bench::build_walking_model(which, mn);
   const Features ref = run(*m, "dp5", 1e-11);
