@@ -20,7 +20,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -61,10 +60,11 @@ double phi(int k, double z) {
   return (e - 1 - z - 0.5 * z * z) / (z * z * z);
 }
 
-// The Jacobian's diagonal at (t, y), negative entries only (the relaxations), by differences.
+// The Jacobian's diagonal at (t, y), negative entries only (the relaxations), by differences;
+// yp and fp are scratch.
 void stiff_diagonal(Problem& P, double t, const std::vector<double>& y, const std::vector<double>& fy,
-                    std::vector<double>& lam) {
-  std::vector<double> yp = y, fp(P.n);
+                    std::vector<double>& lam, std::vector<double>& yp, std::vector<double>& fp) {
+  yp = y;
   for (size_t i = 0; i < P.n; ++i) {
     const double d = 1e-7 * std::max(1.0, std::fabs(y[i]));
     yp[i] = y[i] + d;
@@ -93,9 +93,11 @@ struct LawsonDp5 {
 
   double step(Problem& P, double t, const std::vector<double>& y, const std::vector<double>& f0,
               const std::vector<double>& lam, double h, double tol, std::vector<double>& out) {
-    N.assign(7, std::vector<double>(P.n));
-    Y.assign(7, std::vector<double>(P.n));
-    fy.resize(P.n);
+    if (N.empty()) {  // sized once: every entry a step reads, it writes first
+      N.assign(7, std::vector<double>(P.n));
+      Y = N;
+      fy.resize(P.n);
+    }
     for (size_t k = 0; k < P.n; ++k) N[0][k] = f0[k] - lam[k] * y[k];
     for (int i = 1; i < 7; ++i) {
       for (size_t k = 0; k < P.n; ++k) {
@@ -126,9 +128,11 @@ struct ExpRk4 {
   void step(Problem& P, double t, const std::vector<double>& y, const std::vector<double>& f0,
             const std::vector<double>& lam, double h, std::vector<double>& out) {
     const double c[5] = {0, 0.5, 0.5, 1, 0.5};
-    N.assign(5, std::vector<double>(P.n));
-    U.assign(5, std::vector<double>(P.n));
-    fy.resize(P.n);
+    if (N.empty()) {  // sized once: every entry a step reads, it writes first
+      N.assign(5, std::vector<double>(P.n));
+      U = N;
+      fy.resize(P.n);
+    }
     for (size_t k = 0; k < P.n; ++k) N[0][k] = f0[k] - lam[k] * y[k];
     for (int i = 1; i < 5; ++i) {
       for (size_t k = 0; k < P.n; ++k) U[i][k] = std::exp(c[i] * h * lam[k]) * y[k] + h * stage_sum(i, h * lam[k], k);
@@ -160,19 +164,21 @@ struct Outcome {
   std::vector<double> angles;  // at the checkpoints
 };
 
-// The run with one method: a step from t of size h, its error norm (<= 1: accepted).
+// The whole run with one method and tolerance: its steps, rejected steps, evaluations and the
+// angle at each checkpoint. A step is accepted when its error norm is <= 1.
 Outcome run(Problem& P, const std::string& method, double tol) {
   const bool expo = method == "lawson" || method == "exprk4d";
   LawsonDp5 dp5;
   ExpRk4 rk4;
-  std::vector<double> y = P.m.initial_state(P.p), f0(P.n), lam(P.n, 0.0), y1(P.n), ym(P.n), fm(P.n), y2(P.n);
+  std::vector<double> y = P.m.initial_state(P.p), f0(P.n), lam(P.n, 0.0), y1(P.n), ym(P.n), fm(P.n), y2(P.n),
+                      yp(P.n), fp(P.n);
   Outcome o;
   P.evals = 0;
   double t = 0, h = 0.01;
   for (double stop : P.stops) {
     while (t < stop) {
       P.f(t, y.data(), f0.data());
-      if (expo) stiff_diagonal(P, t, y, f0, lam);
+      if (expo) stiff_diagonal(P, t, y, f0, lam, yp, fp);
       for (;;) {
         const bool last = t + h >= stop;
         const double hs = last ? stop - t : h;

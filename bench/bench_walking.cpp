@@ -14,7 +14,8 @@
 // baseline of solver/serial_kernels.hpp. `integration=parts,whole` adds a row per model
 // integrated as one system ("[whole]", Partitioning::Off; "parts" forces On), the baseline of
 // the partitioned integration (solver/partitioned_simulator.hpp; the single joint is one part
-// either way; "neurons": Partitioning::Neurons, the spiking cells apart from their networks, "[neurons]"). Times are the best of BENCH_REPEATS (default 3) runs.
+// either way; "neurons": Partitioning::Neurons, the spiking cells apart from their networks,
+// "[neurons]"). Times are the best of BENCH_REPEATS (default 3) runs.
 // Environment: BENCH_MAXORD=q limits the BDF order,
 // BENCH_STALD=1 switches on CVODES' stability limit detection (both measured, not adopted),
 // BENCH_INTEGRATOR=name selects the integrator ([simulation] integrator names: erk_dp5, ...),
