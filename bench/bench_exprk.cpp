@@ -76,6 +76,15 @@ void stiff_diagonal(Problem& P, double t, const std::vector<double>& y, const st
   }
 }
 
+// A method's stage buffers, sized once: every entry a step reads, it writes first.
+void size_stages(int stages, size_t n, std::vector<std::vector<double>>& N, std::vector<std::vector<double>>& Y,
+                 std::vector<double>& fy) {
+  if (!N.empty()) return;
+  N.assign(static_cast<size_t>(stages), std::vector<double>(n));
+  Y = N;
+  fy.resize(n);
+}
+
 // Dormand-Prince on v = exp(-(t - t_n) L) y (L = 0: Dormand-Prince itself). Writes y(t + h),
 // returns the weighted RMS of the embedded error estimate.
 struct LawsonDp5 {
@@ -93,11 +102,7 @@ struct LawsonDp5 {
 
   double step(Problem& P, double t, const std::vector<double>& y, const std::vector<double>& f0,
               const std::vector<double>& lam, double h, double tol, std::vector<double>& out) {
-    if (N.empty()) {  // sized once: every entry a step reads, it writes first
-      N.assign(7, std::vector<double>(P.n));
-      Y = N;
-      fy.resize(P.n);
-    }
+    size_stages(7, P.n, N, Y, fy);
     for (size_t k = 0; k < P.n; ++k) N[0][k] = f0[k] - lam[k] * y[k];
     for (int i = 1; i < 7; ++i) {
       for (size_t k = 0; k < P.n; ++k) {
@@ -128,11 +133,7 @@ struct ExpRk4 {
   void step(Problem& P, double t, const std::vector<double>& y, const std::vector<double>& f0,
             const std::vector<double>& lam, double h, std::vector<double>& out) {
     const double c[5] = {0, 0.5, 0.5, 1, 0.5};
-    if (N.empty()) {  // sized once: every entry a step reads, it writes first
-      N.assign(5, std::vector<double>(P.n));
-      U = N;
-      fy.resize(P.n);
-    }
+    size_stages(5, P.n, N, U, fy);
     for (size_t k = 0; k < P.n; ++k) N[0][k] = f0[k] - lam[k] * y[k];
     for (int i = 1; i < 5; ++i) {
       for (size_t k = 0; k < P.n; ++k) U[i][k] = std::exp(c[i] * h * lam[k]) * y[k] + h * stage_sum(i, h * lam[k], k);
