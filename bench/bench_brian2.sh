@@ -7,7 +7,8 @@
 #   PHASMID=path overrides build/phasmid; PHASMID_TOLS, RK4_DTS, GSL_METHODS, GSL_ERRORS, GSL_DT
 #   the ladders (GSL_METHODS: Brian2's adaptive GSL pairs, default "rkf45 rkck");
 #   PHASMID_METHODS the phasmid integrators ([simulation] integrator; default "cvodes_bdf erk_dp5").
-#   NEURONS_TOLS: rows with partitioned = "neurons" (Dormand-Prince on the motoneurons, muscles
+#   NEURONS_TOLS: rows with partitioned = "neurons" (Dormand-Prince, NEURONS_METHODS: "erk_dp5"
+#   ARKODE's and/or "dopri5" phasmid's, default both, on the motoneurons, muscles
 #   and mechanics at each of these tolerances, CVODES BDF on the CPG and interneurons at
 #   stiff_part_tol = NEURONS_STIFF_TOL; docs/solver.md "Integrators"); default "1e-4 1e-5", 1e-7.
 #   NEURONS_STIFF_ATOL (default "mV = 1e-4"; empty: none): each compiled NEURONS_TOLS row once
@@ -54,6 +55,7 @@ PHASMID_METHODS=${PHASMID_METHODS:-"cvodes_bdf erk_dp5"}
 PHASMID_TOLS=${PHASMID_TOLS:-"1e-4 1e-5 1e-6 1e-7 1e-8 1e-9 1e-10"}
 NEURONS_TOLS=${NEURONS_TOLS-"1e-4 1e-5"}
 NEURONS_STIFF_TOL=${NEURONS_STIFF_TOL:-1e-7}
+NEURONS_METHODS=${NEURONS_METHODS:-"erk_dp5 dopri5"}
 NEURONS_STIFF_ATOL=${NEURONS_STIFF_ATOL-mV = 1e-4}
 COMPILED_RHS=${COMPILED_RHS:-1}
 RK4_DTS=${RK4_DTS:-"0.05 0.025 0.01 0.005"}
@@ -179,18 +181,20 @@ for method in $PHASMID_METHODS; do
     fi
   done
 done
+for nm in $NEURONS_METHODS; do
 for tol in $NEURONS_TOLS; do
-  echo "bench_brian2: phasmid erk_dp5 partitioned = neurons, rtol = atol = $tol ..." >&2
-  label="phasmid erk_dp5 + cvodes_bdf $NEURONS_STIFF_TOL (partitioned = \"neurons\"), rtol = atol = $tol"
-  phasmid_row "$label" "$tol" erk_dp5 "partitioned = \"neurons\"\\nstiff_part_tol = $NEURONS_STIFF_TOL"
+  echo "bench_brian2: phasmid $nm partitioned = neurons, rtol = atol = $tol ..." >&2
+  label="phasmid $nm + cvodes_bdf $NEURONS_STIFF_TOL (partitioned = \"neurons\"), rtol = atol = $tol"
+  phasmid_row "$label" "$tol" "$nm" "partitioned = \"neurons\"\\nstiff_part_tol = $NEURONS_STIFF_TOL"
   if [ "$COMPILED_RHS" = 1 ]; then
-    phasmid_row "$label, compiled_rhs" "$tol" erk_dp5 \
+    phasmid_row "$label, compiled_rhs" "$tol" "$nm" \
       "partitioned = \"neurons\"\\nstiff_part_tol = $NEURONS_STIFF_TOL\\ncompiled_rhs = true"
     if [ -n "$NEURONS_STIFF_ATOL" ]; then
-      phasmid_row "$label, compiled_rhs, network part { $NEURONS_STIFF_ATOL }" "$tol" erk_dp5 \
+      phasmid_row "$label, compiled_rhs, network part { $NEURONS_STIFF_ATOL }" "$tol" "$nm" \
         "partitioned = \"neurons\"\\nstiff_part_tol = $NEURONS_STIFF_TOL\\ncompiled_rhs = true\\nstiff_part_atol_by_unit = { $NEURONS_STIFF_ATOL }"
     fi
   fi
+done
 done
 for dt in $RK4_DTS; do
   echo "bench_brian2: Brian2 RK4 dt = $dt ms ..." >&2

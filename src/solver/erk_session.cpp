@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "common/error.hpp"
+#include "solver/dopri_session.hpp"
 
 namespace phasmid::solver {
 
@@ -31,6 +32,12 @@ ARKODE_ERKTableID table_of(IntegratorKind kind) {
 }
 
 }  // namespace
+
+std::unique_ptr<IntegratorSession> make_explicit_session(SUNContext ctx, const SolverOptions& options, const double* y0,
+                                                         size_t n, CVRhsFn rhs, void* user_data) {
+  if (options.integrator == IntegratorKind::Dopri5) return std::make_unique<DopriSession>(ctx, options, y0, n, rhs, user_data);
+  return std::make_unique<ErkSession>(ctx, options, y0, n, rhs, user_data);
+}
 
 void ErkSession::FreeMemory::operator()(void* mem) const { ERKStepFree(&mem); }
 

@@ -21,6 +21,10 @@
 
 namespace phasmid::solver {
 
+// The session of an explicit integrator kind: phasmid's DopriSession for Dopri5, else ErkSession.
+std::unique_ptr<IntegratorSession> make_explicit_session(SUNContext ctx, const SolverOptions& options, const double* y0,
+                                                         size_t n, CVRhsFn rhs, void* user_data);
+
 class ErkSession : public IntegratorSession {
  public:
   // The integrator at t = 0 from y0 (n states) for rhs(t, y, ydot, user_data) with the table

@@ -362,7 +362,7 @@ void start_sessions(Run& run, const model::OdeModel& model, const std::vector<st
     for (size_t e = 0; e < ps.exports.size(); ++e) ps.coef[e] = y0[ps.states[ps.exports[e]]];
     const SolverOptions part_options = options_of_part(options, ps.stiff);
     if (is_explicit_rk(part_options.integrator)) {
-      ps.session = std::make_unique<ErkSession>(ctx, part_options, own.data(), own.size(), part_rhs, &ps);
+      ps.session = make_explicit_session(ctx, part_options, own.data(), own.size(), part_rhs, &ps);
     } else {
       auto cv = std::make_unique<CvodesSession>(ctx, part_options, own.data(), own.size(), part_rhs, &ps);
       // Parts are small (a joint: 20-26 states): dense LU with the compiled kernels.

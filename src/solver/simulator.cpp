@@ -539,7 +539,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const OutputTimes
   const std::vector<double> y0 = model_.initial_state(schedule.p());
   std::unique_ptr<IntegratorSession> session_owner;
   if (is_explicit_rk(options_.integrator) && ns == 0) {
-    session_owner = std::make_unique<ErkSession>(ctx.get(), options_, y0.data(), d.n, rhs_cb, &d);
+    session_owner = make_explicit_session(ctx.get(), options_, y0.data(), d.n, rhs_cb, &d);
   } else {
     // Sensitivities run on CVODES BDF whatever integrator plain runs use (docs/sensitivity.md).
     SolverOptions cvodes_options = options_;

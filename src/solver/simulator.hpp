@@ -29,9 +29,11 @@ enum class SensitivityRhs { Batched, PerParameter };
 // CVODES BDF + Newton (stiff) or Adams-Moulton + fixed-point iteration (non-stiff: no
 // Jacobian, no linear solves), or an explicit adaptive Runge-Kutta pair of ARKODE's ERKStep
 // (Bogacki-Shampine 3(2), Dormand-Prince 5(4), Verner 6(5), Fehlberg 8(7)): no Jacobian, no
-// linear solves, a few right-hand sides per step. Chosen by measurement per model
-// (docs/benchmarks.md, "Method study"); sensitivities always run on CVODES BDF.
-enum class IntegratorKind { Bdf, Adams, ErkBs3, ErkDp5, ErkVerner65, ErkFehlberg78 };
+// linear solves, a few right-hand sides per step; Dopri5 is Dormand-Prince 5(4) in phasmid's
+// own stepper (solver/dopri_session.hpp), ARKODE's method with less work per step. Chosen by
+// measurement per model (docs/benchmarks.md, "Method study"); sensitivities always run on
+// CVODES BDF.
+enum class IntegratorKind { Bdf, Adams, ErkBs3, ErkDp5, ErkVerner65, ErkFehlberg78, Dopri5 };
 inline bool is_explicit_rk(IntegratorKind k) { return k != IntegratorKind::Bdf && k != IntegratorKind::Adams; }
 enum class VectorKernels { Phasmid, Sundials };
 // On: one integrator per joint network (model::PartitionGrain::Joints). Neurons: also each
