@@ -6,11 +6,16 @@
 // controller, so their step counts compare; accuracy is the largest difference of the FTi angle
 // from a Dormand-Prince 1e-11 run (ARKODE) at checkpoints every 500 ms over 9 s. Usage:
 //   bench_exprk [joint|leg|three] [TOLS=1e-4,1e-5,1e-6] [methods=dp5,lawson,rk4d,exprk4d]
+//   (also exprk4e3, exprk4e2: embedded estimates, below)
 // dp5: Dormand-Prince 5(4), embedded estimate. lawson: the same applied to
 // v = exp(-(t - t_n) L) y, L the Jacobian's negative diagonal frozen at the step's start.
 // rk4d / exprk4d: Hochbruck and Ostermann's five-stage exponential Runge-Kutta method of stiff
 // order 4 (Acta Numerica 2010, the method "exprk4s5"), with L = 0 / that diagonal, the error by
 // step doubling (three steps' work per step: compare steps, not evaluations).
+// exprk4e3 / exprk4e2: the same method with an embedded estimate instead: the weights with stage
+// 5 replaced by stage 3 (or 2), which share its node c = 1/2 and so satisfy the same quadrature
+// conditions, give a third- (second-) order solution; their difference h (4 phi_2 - 8 phi_3)
+// (N_5 - N_3) is the estimate, controlled with the exponent 1/4 (1/3). One step's work per step.
 // BENCH_L_UNITS="mV" (comma-separated units) keeps only those states' diagonal in L: "mV", the
 // membrane potentials alone, is the setting whose error follows the tolerance (docs/benchmarks.md).
 #include <sundials/sundials_context.h>
@@ -131,7 +136,8 @@ struct ExpRk4 {
   std::vector<double> fy;
 
   void step(Problem& P, double t, const std::vector<double>& y, const std::vector<double>& f0,
-            const std::vector<double>& lam, double h, std::vector<double>& out) {
+            const std::vector<double>& lam, double h, std::vector<double>& out, int embed = 0,
+            std::vector<double>* err = nullptr) {
     const double c[5] = {0, 0.5, 0.5, 1, 0.5};
     size_stages(5, P.n, N, U, fy);
     for (size_t k = 0; k < P.n; ++k) N[0][k] = f0[k] - lam[k] * y[k];
@@ -145,6 +151,7 @@ struct ExpRk4 {
       const double z = h * lam[k], p1 = phi(1, z), p2 = phi(2, z), p3 = phi(3, z);
       out[k] = std::exp(z) * y[k] +
                h * ((p1 - 3 * p2 + 4 * p3) * N[0][k] + (-p2 + 4 * p3) * N[3][k] + (4 * p2 - 8 * p3) * N[4][k]);
+      if (err) (*err)[k] = h * (4 * p2 - 8 * p3) * (N[4][k] - N[embed][k]);
     }
   }
 
@@ -168,7 +175,10 @@ struct Outcome {
 // The whole run with one method and tolerance: its steps, rejected steps, evaluations and the
 // angle at each checkpoint. A step is accepted when its error norm is <= 1.
 Outcome run(Problem& P, const std::string& method, double tol) {
-  const bool expo = method == "lawson" || method == "exprk4d";
+  const bool expo = method == "lawson" || method == "exprk4d" || method == "exprk4e3" || method == "exprk4e2";
+  const int embed = method == "exprk4e3" || method == "rk4e3" ? 2 : method == "exprk4e2" || method == "rk4e2" ? 1 : 0;
+  const double expo_err = embed == 2 ? 0.25 : embed == 1 ? 1.0 / 3 : 0.2;
+  std::vector<double> est(P.n);
   LawsonDp5 dp5;
   ExpRk4 rk4;
   std::vector<double> y = P.m.initial_state(P.p), f0(P.n), lam(P.n, 0.0), y1(P.n), ym(P.n), fm(P.n), y2(P.n),
@@ -186,6 +196,14 @@ Outcome run(Problem& P, const std::string& method, double tol) {
         double en;
         if (method == "dp5" || method == "lawson") {
           en = dp5.step(P, t, y, f0, lam, hs, tol, y2);
+        } else if (embed) {
+          rk4.step(P, t, y, f0, lam, hs, y2, embed, &est);
+          en = 0;
+          for (size_t k = 0; k < P.n; ++k) {
+            const double e = est[k] / (tol * (1.0 + std::max(std::fabs(y[k]), std::fabs(y2[k]))));
+            en += e * e;
+          }
+          en = std::sqrt(en / P.n);
         } else {  // step doubling: the error of the two half steps is (y2 - y1) / 15
           rk4.step(P, t, y, f0, lam, hs, y1);
           rk4.step(P, t, y, f0, lam, 0.5 * hs, ym);
@@ -200,10 +218,10 @@ Outcome run(Problem& P, const std::string& method, double tol) {
         }
         if (!(en <= 1.0)) {  // a non-finite estimate (a state overflowed in a too long step) too
           ++o.rejects;
-          h = hs * (en > 1.0 ? std::max(0.2, 0.9 * std::pow(en, -0.2)) : 0.2);
+          h = hs * (en > 1.0 ? std::max(0.2, 0.9 * std::pow(en, -expo_err)) : 0.2);
           continue;
         }
-        const double grow = 0.9 * std::pow(std::max(en, 1e-10), -0.2);
+        const double grow = 0.9 * std::pow(std::max(en, 1e-10), -expo_err);
         t = last ? stop : t + hs;
         y = y2;
         ++o.steps;

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The three legs' partitioned run on 1 and 2 threads ([simulation] threads; issue #21): 9 s of
-# walking at the kinds' defaults (spiking: Dormand-Prince per joint at 1e-6; rate: CVODES BDF
-# per joint at 1e-7), wall and CPU seconds (best of BENCH_REPEATS, default 3) and the ratios
-# against the sequential run (threads = 1) of the same script, with the load average before
-# each row: a second thread only helps while a second core is free. A variant "... @W" runs in
-# windows of W ms instead of WINDOW_MS.
+# walking at the kinds' defaults (spiking: Dormand-Prince per joint at 1e-6, phasmid's dopri5 or
+# SPIKING_INTEGRATOR; rate: CVODES BDF per joint at 1e-7), wall and CPU seconds (best of
+# BENCH_REPEATS, default 3) and the ratios against the sequential run (threads = 1) of the
+# same script, with the load average before each row: a second thread only helps while a
+# second core is free. A variant "... @W" runs in windows of W ms instead of WINDOW_MS.
 #
 #   bash bench/bench_threads.sh [WINDOW_MS=1]
 set -euo pipefail
@@ -12,11 +12,12 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BENCH=${BENCH:-$ROOT/build/bench/bench_walking}
 WINDOW=${1:-1}
 export BENCH_REPEATS=${BENCH_REPEATS:-3}
+SPIKING_INTEGRATOR=${SPIKING_INTEGRATOR:-dopri5}  # the kind's default; erk_dp5: ARKODE's Dormand-Prince
 [ -x "$BENCH" ] || { echo "bench_threads: $BENCH not found (cmake --build build --target bench_walking)" >&2; exit 1; }
 printf "# bench_threads: 9000 ms of the three legs, best of %s, window %s ms, %s\n" "$BENCH_REPEATS" "$WINDOW" "$(date -u +%FT%TZ)"
 printf "%-8s %-30s %7s %8s %8s %8s %9s %9s  %s\n" mn variant threads wall_s cpu_s steps wall/seq cpu/seq load
 for mn in spiking rate; do
-  if [ $mn = spiking ]; then integ=erk_dp5 tol=1e-6; else integ=cvodes_bdf tol=1e-7; fi
+  if [ $mn = spiking ]; then integ=$SPIKING_INTEGRATOR tol=1e-6; else integ=cvodes_bdf tol=1e-7; fi
   variants=("default" "default @0.25")
   [ $mn = rate ] && variants+=("1=1e-6,mV=1e-5" "1=1e-6,mV=1e-5 @0.25")
   for v in "${variants[@]}"; do

@@ -2,7 +2,8 @@
 // bench/method_study.sh; docs/benchmarks.md "Method study") against a tight-tolerance
 // reference, CVODES BDF at rtol = atol = 1e-10 as one system: every feature in ms within
 // 0.01 ms, every one in deg within 0.01 deg. The single FTi joint as shipped
-// (configs/single_joint_fti.toml, Dormand-Prince 5(4) at 1e-6, 9 s) and the three legs with
+// (configs/single_joint_fti.toml, Dormand-Prince 5(4) at 1e-6 in phasmid's stepper, 9 s), the
+// single joint at the setting of the Brian2 head-to-head, and the three legs with
 // rate motoneurons at their kind's default (BDF per joint at 1e-7; 5 s, 2.5 s discarded); both
 // three-leg models on two threads ([simulation] threads = 2: the windowed partitioned run,
 // spiking at its default Dormand-Prince per joint at 1e-6).
@@ -16,6 +17,7 @@
 #include "build_info.hpp"
 #include "config/config.hpp"
 #include "scenario/scenario.hpp"
+#include "solver/integrator_kind.hpp"
 
 using namespace phasmid;
 
@@ -47,7 +49,7 @@ void expect_default_matches_reference(const config::Config& cfg, const char* wha
     ++gated;
   }
   std::printf("%s: %s at rtol %g, %zu features in ms and deg within 0.01 of BDF 1e-10\n", what,
-              defaults.solver.integrator == solver::IntegratorKind::Bdf ? "CVODES BDF" : "ERKStep", defaults.solver.rtol,
+              solver::integrator_name(defaults.solver.integrator).c_str(), defaults.solver.rtol,
               gated);
   EXPECT_GE(gated, 4u);
 }
@@ -71,7 +73,7 @@ config::Config single_joint_neurons_partition(const std::string& extra) {
 TEST(DefaultIntegration, SingleJointAsShippedMatchesTheTightReference) {
   auto cfg = config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/single_joint_fti.toml");
   auto scenario = config::build_scenario(cfg);
-  EXPECT_EQ(config::simulation_settings(cfg, scenario.get()).solver.integrator, solver::IntegratorKind::ErkDp5);
+  EXPECT_EQ(config::simulation_settings(cfg, scenario.get()).solver.integrator, solver::IntegratorKind::Dopri5);
   expect_default_matches_reference(cfg, "single joint (spiking)");
 }
 
@@ -90,6 +92,18 @@ TEST(DefaultIntegration, SingleJointNeuronsPartitionLooserNetworkPotentialsMatch
   auto scenario = config::build_scenario(cfg);
   ASSERT_EQ(config::simulation_settings(cfg, scenario.get()).solver.stiff_part_atol_by_unit.size(), 1u);
   expect_default_matches_reference(cfg, "single joint (spiking, neurons partition, network mV atol 1e-4)", false);
+}
+
+// The setting of the Brian2 head-to-head (docs/benchmarks.md "Dormand-Prince of our own"):
+// phasmid's Dormand-Prince on the spiking part at 3.5e-5, the network part's potentials at atol
+// 1e-4 mV; 3.5e-5 is the loosest tolerance of that ladder whose tighter rungs all meet the gate.
+TEST(DefaultIntegration, SingleJointBrian2HeadToHeadSettingMatchesTheTightReference) {
+  auto cfg = config::parse_config(
+      "[model]\ntype = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\n"
+      "[simulation]\nt_end_ms = 9000\ndiscard_ms = 2000\nintegrator = \"dopri5\"\nrtol = 3.5e-5\natol = 3.5e-5\n"
+      "partitioned = \"neurons\"\nstiff_part_tol = 1e-7\nstiff_part_atol_by_unit = { mV = 1e-4 }\n",
+      "single_joint_head_to_head.toml");
+  expect_default_matches_reference(cfg, "single joint (dopri5 3.5e-5, neurons partition, network mV 1e-4)", false);
 }
 
 TEST(DefaultIntegration, RateThreeLegsMatchTheTightReference) {
