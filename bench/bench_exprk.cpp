@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/dormand_prince_table.hpp"
 #include "solver/erk_session.hpp"
 #include "walking_models.hpp"
 
@@ -93,15 +94,9 @@ void size_stages(int stages, size_t n, std::vector<std::vector<double>>& N, std:
 // Dormand-Prince on v = exp(-(t - t_n) L) y (L = 0: Dormand-Prince itself). Writes y(t + h),
 // returns the weighted RMS of the embedded error estimate.
 struct LawsonDp5 {
-  static constexpr double c[7] = {0, 0.2, 0.3, 0.8, 8.0 / 9, 1, 1};
-  static constexpr double A[7][6] = {{0},
-                                     {0.2},
-                                     {3.0 / 40, 9.0 / 40},
-                                     {44.0 / 45, -56.0 / 15, 32.0 / 9},
-                                     {19372.0 / 6561, -25360.0 / 2187, 64448.0 / 6561, -212.0 / 729},
-                                     {9017.0 / 3168, -355.0 / 33, 46732.0 / 5247, 49.0 / 176, -5103.0 / 18656},
-                                     {35.0 / 384, 0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84}};
-  static constexpr double bhat[7] = {5179.0 / 57600, 0, 7571.0 / 16695, 393.0 / 640, -92097.0 / 339200, 187.0 / 2100, 1.0 / 40};
+  static constexpr const double (&c)[7] = solver::dormand_prince::kC;
+  static constexpr const double (&A)[7][6] = solver::dormand_prince::kA;
+  static constexpr const double (&bhat)[7] = solver::dormand_prince::kBhat;
   std::vector<std::vector<double>> N, Y;
   std::vector<double> fy;
 

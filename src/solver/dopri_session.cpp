@@ -5,6 +5,8 @@
 #include <limits>
 #include <utility>
 
+#include "solver/dormand_prince_table.hpp"
+
 namespace phasmid::solver {
 
 namespace {
@@ -21,20 +23,12 @@ constexpr double kK1 = -0.8 / 4, kK2 = 0.31 / 4, kTiny = 1e-10;
 constexpr double kKeepLow = 1.0, kKeepHigh = 1.5;
 constexpr int kSmallFailures = 2;
 
-// Dormand and Prince (1980), the table of ARKODE_DORMAND_PRINCE_7_4_5: row 6 is the solution's
-// weights, so stage 6's input is y_{n+1} and its slope the next step's first (FSAL).
-constexpr double kC[7] = {0, 0.2, 0.3, 0.8, 8.0 / 9, 1, 1};
-constexpr double kA[7][6] = {{0},
-                             {0.2},
-                             {3.0 / 40, 9.0 / 40},
-                             {44.0 / 45, -56.0 / 15, 32.0 / 9},
-                             {19372.0 / 6561, -25360.0 / 2187, 64448.0 / 6561, -212.0 / 729},
-                             {9017.0 / 3168, -355.0 / 33, 46732.0 / 5247, 49.0 / 176, -5103.0 / 18656},
-                             {35.0 / 384, 0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84}};
-// The solution's weights minus the embedding's (5179/57600, 0, 7571/16695, 393/640,
-// -92097/339200, 187/2100, 1/40).
-constexpr double kE[7] = {35.0 / 384 - 5179.0 / 57600,      0, 500.0 / 1113 - 7571.0 / 16695, 125.0 / 192 - 393.0 / 640,
-                          -2187.0 / 6784 + 92097.0 / 339200, 11.0 / 84 - 187.0 / 2100, -1.0 / 40};
+using dormand_prince::kA;
+using dormand_prince::kC;
+// The solution's weights (row 6 of A; the seventh is 0) minus the embedding's.
+constexpr double kE[7] = {kA[6][0] - dormand_prince::kBhat[0], 0, kA[6][2] - dormand_prince::kBhat[2],
+                          kA[6][3] - dormand_prince::kBhat[3], kA[6][4] - dormand_prince::kBhat[4],
+                          kA[6][5] - dormand_prince::kBhat[5], -dormand_prince::kBhat[6]};
 
 // Flags with CVODES' / ARKODE's values (integrator_session.hpp).
 constexpr int kTooMuchWork = -1, kErrFailure = -3, kRhsFail = -8, kIllInput = -22, kBadT = -25;
