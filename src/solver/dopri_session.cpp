@@ -49,6 +49,7 @@ DopriSession::DopriSession(SUNContext ctx, const SolverOptions& options, const d
   y_.reset(new_state_vector(ctx, options, y0, n));
   for (OwnedVector* v : {&yn_, &yold_, &ynew_, &stage_, &fold_}) v->reset(N_VClone(y_.get()));
   for (OwnedVector& k : k_) k.reset(N_VClone(y_.get()));
+  for (OwnedVector& k : k_) N_VConst(0.0, k.get());  // read by dky before the first advance
   std::copy(y0, y0 + n, data(yn_));
 }
 
@@ -71,18 +72,23 @@ void DopriSession::set_stop_time(double t) {
 
 void DopriSession::set_state_atol(const std::vector<double>& atol) { atol_ = atol; }
 
+// The slope is taken here, not at the next advance, so that dky(t, 1) is right in between.
 void DopriSession::restart(double t) {
   tn_ = told_ = t;
   h_last_ = 0.0;
   std::copy(data(y_), data(y_) + n_, data(yn_));
+  ++stats_.rhs_evals;
+  slope_current_ = rhs_(tn_, yn_.get(), k_[0].get(), user_data_) == 0;
   started_ = false;
 }
 
 int DopriSession::start(double tout) {
-  const int flag = rhs_(tn_, yn_.get(), k_[0].get(), user_data_);
-  ++stats_.rhs_evals;
-  if (flag != 0) return kRhsFail;
-  told_ = tn_;
+  if (!slope_current_) {
+    ++stats_.rhs_evals;
+    if (rhs_(tn_, yn_.get(), k_[0].get(), user_data_) != 0) return kRhsFail;
+  }
+  slope_current_ = false;
+  told_ = tret_last_ = tn_;
   h_last_ = 0.0;
   h_ = initial_step(tout);
   ehist_ = 1.0;
@@ -257,12 +263,11 @@ int DopriSession::advance(double tout, double* t, int itask) {
   *t = tn_;
   if (!started_)
     if (const int flag = start(tout); flag < 0) return flag;
-  const double roundoff = 100 * kUround * (std::fabs(tn_) + std::fabs(h_));
-  if (tstop_set_ && tstop_ < tn_ - roundoff) return kIllInput;
+  if (tstop_set_ && tstop_ < tn_ - roundoff()) return kIllInput;
   auto hand_out = [&](double when) {
     if (when == tn_) std::copy(data(yn_), data(yn_) + n_, data(y_));
     else interpolate(when, 0, data(y_));
-    *t = when;
+    *t = tret_last_ = when;
   };
   bool stepped = false;
   for (long steps = 0;; ++steps) {
@@ -276,13 +281,15 @@ int DopriSession::advance(double tout, double* t, int itask) {
       hand_out(tout);
       return CV_SUCCESS;
     }
-    if (tstop_set_ && tn_ >= tstop_ - 100 * kUround * (std::fabs(tn_) + std::fabs(h_))) {
+    if (tstop_set_ && tn_ >= tstop_ - roundoff()) {
       hand_out(tn_);
-      *t = tstop_;
+      *t = tret_last_ = tstop_;
       tstop_set_ = false;
       return CV_TSTOP_RETURN;
     }
-    if (itask == CV_ONE_STEP && stepped) {
+    // One-step mode returns after a step, or at once with the end of a step taken before and
+    // not yet returned (after a root inside it), as CVODES does.
+    if (itask == CV_ONE_STEP && (stepped || tn_ > tret_last_)) {
       hand_out(tn_);
       return CV_SUCCESS;
     }

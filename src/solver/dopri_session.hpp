@@ -18,7 +18,7 @@
 //
 // Contract (as ErkSession's):
 //  - advance(tout, t, itask) returns 0 (tout reached in normal mode, or one step taken in
-//    one-step mode), 1 (the stop time reached: y() is y(tstop), the stop is then cleared),
+//    one-step mode; after a root inside the last step, its end without a new step), 1 (the stop time reached: y() is y(tstop), the stop is then cleared),
 //    2 (a root: y() is y(t_root); the next call returns the step's further roots first),
 //    or a negative flag: -1 more than max_steps steps in this call, -3 repeated error-test
 //    failures (50) or a step below the time's resolution, -8 the right-hand side failed
@@ -28,6 +28,8 @@
 //  - restart(t) restarts from y() at t: slopes, first step and root signs are taken afresh;
 //    tolerances, roots, counters and the stop time stay.
 //  - No forward sensitivities.
+#include <cmath>
+#include <limits>
 #include <vector>
 
 #include "solver/integrator_session.hpp"
@@ -75,6 +77,8 @@ class DopriSession : public IntegratorSession {
   int crossing(size_t i, double glo, double ghi) const;
   void interpolate(double t, int k, double* out) const;
   double* data(const OwnedVector& v) const { return N_VGetArrayPointer(v.get()); }
+  // Times closer than this to the current time are the same time (ARKODE's FUZZ_FACTOR 100).
+  double roundoff() const { return 100 * std::numeric_limits<double>::epsilon() * (std::fabs(tn_) + std::fabs(h_)); }
 
   CVRhsFn rhs_;
   void* user_data_;
@@ -87,9 +91,11 @@ class DopriSession : public IntegratorSession {
   OwnedVector k_[7];  // stage slopes; k_[0] = f(tn_, yn_), k_[6] = f(tn_ + h, ynew_)
   OwnedVector fold_;  // f at the last step's start
   double tn_ = 0.0, told_ = 0.0, h_ = 0.0, h_last_ = 0.0;
+  double tret_last_ = 0.0;  // the time advance() last returned
   double ehist_ = 1.0;  // the last accepted step's biased error norm
   double etamax_ = 1e4;
   bool started_ = false;
+  bool slope_current_ = false;  // k_[0] is f(tn_, yn_) before the start (taken at a restart)
   double tstop_ = 0.0;
   bool tstop_set_ = false;
   // Roots.

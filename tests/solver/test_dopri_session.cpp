@@ -59,6 +59,9 @@ TEST(DopriSession, DecayMatchesTheClosedFormAcrossARestart) {
   k = 0.05;  // the right-hand side switches at 50 ms
   session.restart(t);
   EXPECT_EQ(session.total_steps(), steps_before);
+  N_Vector slope = session.work();  // the new slope at once, before any step
+  ASSERT_EQ(session.dky(t, 1, slope), 0);
+  EXPECT_NEAR(NV_Ith_S(slope, 0), -0.05 * NV_Ith_S(session.y(), 0), 1e-15);
   session.set_stop_time(100.0);
   EXPECT_EQ(session.advance(100.0, &t, CV_NORMAL), CV_SUCCESS);  // tout first, as ARKODE and CVODES
   EXPECT_DOUBLE_EQ(t, 100.0);
@@ -142,6 +145,29 @@ TEST(DopriSession, OneStepModeReturnsAfterEachStep) {
   EXPECT_EQ(flag, CV_TSTOP_RETURN);
   EXPECT_DOUBLE_EQ(t, 1.0);
   EXPECT_DOUBLE_EQ(session.current_time(), 1.0);  // the last step lands on the stop exactly
+}
+
+// After a root inside a step, one-step mode first returns that step's end, as CVODES does.
+TEST(DopriSession, OneStepModeFinishesTheStepOfARoot) {
+  solver::SundialsContext ctx;
+  const double y0[2] = {1.0, 0.0};
+  solver::DopriSession session(ctx.get(), dopri(1e-8), y0, 2, test::oscillator_rhs, nullptr);
+  session.init_roots({-1, +1}, test::oscillator_roots);
+  session.set_stop_time(5.0);
+  double t = 0.0;
+  int flag = CV_SUCCESS;
+  while (flag == CV_SUCCESS) flag = session.advance(5.0, &t, CV_ONE_STEP);
+  ASSERT_EQ(flag, CV_ROOT_RETURN);
+  EXPECT_NEAR(t, M_PI / 2, 1e-8);
+  const long steps = session.total_steps();
+  const double end = session.current_time();
+  ASSERT_GT(end, t);
+  EXPECT_EQ(session.advance(5.0, &t, CV_ONE_STEP), CV_SUCCESS);
+  EXPECT_EQ(t, end);
+  EXPECT_EQ(session.total_steps(), steps);
+  EXPECT_NEAR(NV_Ith_S(session.y(), 0), std::cos(end), 1e-7);
+  EXPECT_EQ(session.advance(5.0, &t, CV_ONE_STEP), CV_SUCCESS);  // then steps again
+  EXPECT_EQ(session.total_steps(), steps + 1);
 }
 
 TEST(DopriSession, ReportsFailuresWithTheirFlags) {

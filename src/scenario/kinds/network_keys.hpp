@@ -47,9 +47,8 @@ inline model::MotoneuronModel motoneuron_key(const ModelSection& s) {
 // motoneurons Dormand-Prince 5(4) per joint at rtol = atol = 1e-6 (joint, leg, three legs;
 // BDF needs 1e-8 or misses at 1e-7, at 1.4-1.8x the time), in phasmid's own stepper (dopri5:
 // ARKODE's steps at less work per step, docs/benchmarks.md "Dormand-Prince of our own"). With
-// rate motoneurons, whose
-// interneuron potentials are too stiff for an explicit method (3.5-7x slower), CVODES BDF at
-// `rate_rtol`.
+// rate motoneurons, whose interneuron potentials are too stiff for an explicit method (3.5-7x
+// slower), CVODES BDF at `rate_rtol`.
 inline RunSettings network_defaults(model::MotoneuronModel mn, double rate_rtol) {
   RunSettings s;
   if (mn == model::MotoneuronModel::Spiking) {
