@@ -1,14 +1,16 @@
 #pragma once
-// The integrator a driver advances, whichever SUNDIALS package runs it (AMICI's "Solver"
-// without the model): CVODES BDF/Adams (CvodesSession, solver/cvodes_session.hpp) or ARKODE's
-// explicit Runge-Kutta ERKStep (ErkSession, solver/erk_session.hpp). The whole-system and the
-// partitioned driver see only this interface, so events, restarts at switches, triggers and
-// the parts' interpolation work with either.
+// The integrator a driver advances (AMICI's "Solver" without the model): CVODES BDF/Adams
+// (CvodesSession, solver/cvodes_session.hpp), ARKODE's explicit Runge-Kutta ERKStep
+// (ErkSession, solver/erk_session.hpp) or phasmid's own Dormand-Prince (DopriSession,
+// solver/dopri_session.hpp). The whole-system and the partitioned driver see only this
+// interface, so events, restarts at switches, triggers and the parts' interpolation work with
+// any of them.
 //
 // Contract:
-//  - advance() returns the package's flag with CVODES' values: CVODES and ARKODE share
-//    0 success, 1 stop time reached, 2 root found and the itask values 1 normal, 2 one step
-//    (static_assert in erk_session.cpp); negative flags are failures (flag_name names them).
+//  - advance() returns the package's flag with CVODES' values: CVODES, ARKODE and DopriSession
+//    share 0 success, 1 stop time reached, 2 root found and the itask values 1 normal, 2 one
+//    step (static_assert in erk_session.cpp); negative flags are failures (flag_name names
+//    them).
 //  - restart(t) restarts the integrator from y() at t (a switch of the right-hand side);
 //    counters are summed over restarts (stats()).
 //  - dky(t, k, out) is the k-th derivative at t of the last step's interpolating polynomial
