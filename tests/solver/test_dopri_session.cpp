@@ -46,6 +46,15 @@ int van_der_pol(sunrealtype, N_Vector y, N_Vector ydot, void*) {
   return 0;
 }
 
+// The harmonic oscillator from (1, 0) with its two roots (directions -1, +1) and a stop at 5.
+std::unique_ptr<solver::DopriSession> oscillator_session(SUNContext ctx, double tol) {
+  const double y0[2] = {1.0, 0.0};
+  auto session = std::make_unique<solver::DopriSession>(ctx, dopri(tol), y0, 2, test::oscillator_rhs, nullptr);
+  session->init_roots({-1, +1}, test::oscillator_roots);
+  session->set_stop_time(5.0);
+  return session;
+}
+
 }  // namespace
 
 TEST(DopriSession, DecayMatchesTheClosedFormAcrossARestart) {
@@ -77,10 +86,8 @@ TEST(DopriSession, DecayMatchesTheClosedFormAcrossARestart) {
 
 TEST(DopriSession, LocatesRootsInTheirDirectionAndInterpolates) {
   solver::SundialsContext ctx;
-  const double y0[2] = {1.0, 0.0};
-  solver::DopriSession session(ctx.get(), dopri(1e-10), y0, 2, test::oscillator_rhs, nullptr);
-  session.init_roots({-1, +1}, test::oscillator_roots);
-  session.set_stop_time(5.0);
+  auto owner = oscillator_session(ctx.get(), 1e-10);
+  solver::DopriSession& session = *owner;
   double t = test::expect_oscillator_roots(session);
   EXPECT_NEAR(NV_Ith_S(session.y(), 1), 1.0, 1e-8);  // y2 = -sin(3 pi / 2)
   // The interpolant and its derivatives at the root: y1' = 1, y1'' = -y1 = 0, y1''' = -y1' = -1.
@@ -150,10 +157,8 @@ TEST(DopriSession, OneStepModeReturnsAfterEachStep) {
 // After a root inside a step, one-step mode first returns that step's end, as CVODES does.
 TEST(DopriSession, OneStepModeFinishesTheStepOfARoot) {
   solver::SundialsContext ctx;
-  const double y0[2] = {1.0, 0.0};
-  solver::DopriSession session(ctx.get(), dopri(1e-8), y0, 2, test::oscillator_rhs, nullptr);
-  session.init_roots({-1, +1}, test::oscillator_roots);
-  session.set_stop_time(5.0);
+  auto owner = oscillator_session(ctx.get(), 1e-8);
+  solver::DopriSession& session = *owner;
   double t = 0.0;
   int flag = CV_SUCCESS;
   while (flag == CV_SUCCESS) flag = session.advance(5.0, &t, CV_ONE_STEP);
