@@ -662,13 +662,32 @@
       ctx.restore();
     }
   };
+  // Indices not resolved at this N (docs/gsa.md, "Resolved indices") are drawn in grey, not in
+  // their series' colour: they are shown, not offered as results.
+  var UNRESOLVED = '#c9c9c9';
+  function resolvedColors(flags, color, n) {
+    var out = [];
+    for (var k = 0; k < n; k++) out.push(flags && flags[k] === false ? UNRESOLVED : color);
+    return out;
+  }
+  function unresolvedText(g, ft, sobol) {
+    var r = ft.resolved;
+    if (!r || !r.n_unresolved) return '';
+    var size = sobol ? 'N' : 'r', n = sobol ? g.N : g.r;
+    return '; grey: ' + r.n_unresolved + ' not resolved at ' + size + ' = ' + n + ' (half-width > ' + fmt(g.resolution) +
+      (sobol ? ' or outside [' + fmt(-g.resolution / 2) + ', ' + fmt(1 + g.resolution / 2) + ']' : ' × the largest μ*') + ')' +
+      (r.n_to_resolve === null ? '' : ', about ' + size + ' = ' + r.n_to_resolve + ' would resolve them');
+  }
   function gsaBars(parent, g, ft, sobol) {
-    var id = 'fig-gsa-' + safeId(ft.name), f = figure(parent, id, sobol
+    var n = g.parameter_names.length, r = ft.resolved || {};
+    var id = 'fig-gsa-' + safeId(ft.name), f = figure(parent, id, (sobol
       ? ft.name + ': first-order (S1) and total (ST) Sobol\' indices per parameter; whiskers: ' + Math.round(100 * g.confidence) + ' % bootstrap intervals'
-      : ft.name + ': Morris μ* (mean |elementary effect|) per parameter; whiskers: ' + Math.round(100 * g.confidence) + ' % bootstrap intervals', 300);
+      : ft.name + ': Morris μ* (mean |elementary effect|) per parameter; whiskers: ' + Math.round(100 * g.confidence) + ' % bootstrap intervals') +
+      unresolvedText(g, ft, sobol), 300);
     var sets = sobol
-      ? [{ label: 'S1', data: ft.S1, errors: ft.S1_conf, backgroundColor: PALETTE[0] }, { label: 'ST', data: ft.ST, errors: ft.ST_conf, backgroundColor: PALETTE[1] }]
-      : [{ label: 'μ*', data: ft.mu_star, errors: ft.mu_star_conf, backgroundColor: PALETTE[0] }];
+      ? [{ label: 'S1', data: ft.S1, errors: ft.S1_conf, backgroundColor: resolvedColors(r.S1, PALETTE[0], n) },
+         { label: 'ST', data: ft.ST, errors: ft.ST_conf, backgroundColor: resolvedColors(r.ST, PALETTE[1], n) }]
+      : [{ label: 'μ*', data: ft.mu_star, errors: ft.mu_star_conf, backgroundColor: resolvedColors(r.mu_star, PALETTE[0], n) }];
     draw(id, f, {
       type: 'bar', data: { labels: g.parameter_names, datasets: sets }, plugins: [whiskers],
       options: { plugins: { title: titleOpt(withUnits(ft.name, ft.units)) },
@@ -677,15 +696,19 @@
   }
   function gsaHeatmap(sec, g) {
     var cells = [], max = 0;
-    g.features.forEach(function (ft) { g.parameter_names.forEach(function (p, j) { if (ft.ST[j] !== null) max = Math.max(max, ft.ST[j]); }); });
+    g.features.forEach(function (ft) {
+      g.parameter_names.forEach(function (p, j) {
+        if (ft.ST[j] !== null && !(ft.resolved && ft.resolved.ST && ft.resolved.ST[j] === false)) max = Math.max(max, ft.ST[j]);
+      });
+    });
     max = Math.min(max, 1) || 1;  // indices are fractions of a variance: above 1 is sampling noise, drawn saturated
     g.features.forEach(function (ft) {
       g.parameter_names.forEach(function (p, j) {
-        var v = ft.ST[j];
-        cells.push({ x: p, y: ft.name, v: v, color: v === null ? '#ddd' : ramp(VIRIDIS, Math.min(1, Math.max(0, v) / max)) });
+        var v = ft.ST[j], unresolved = ft.resolved && ft.resolved.ST && ft.resolved.ST[j] === false;
+        cells.push({ x: p, y: ft.name, v: v, color: v === null ? '#ddd' : unresolved ? UNRESOLVED : ramp(VIRIDIS, Math.min(1, Math.max(0, v) / max)) });
       });
     });
-    var id = 'fig-gsa-heatmap', f = figure(sec, id, 'Total Sobol\' index ST of every feature (rows) with respect to every parameter (columns); grey: undefined', 80 + 28 * g.features.length);
+    var id = 'fig-gsa-heatmap', f = figure(sec, id, 'Total Sobol\' index ST of every feature (rows) with respect to every parameter (columns); pale grey: undefined; grey: not resolved at N = ' + g.N, 80 + 28 * g.features.length);
     heatmap(id, f, 'ST: parameter × feature', g.parameter_names, g.features.map(function (ft) { return ft.name; }), cells, 'parameter', 'feature', 'ST (1)');
     colorbar(f.fig, VIRIDIS, 0, max, 'ST (1)');
   }
@@ -723,6 +746,16 @@
     table(sec, 'table-gsa-counts', 'Outputs per feature: blocks (Sobol\': base rows; Morris: trajectories) used and dropped for failed or undefined outputs',
       ['feature', 'unit', 'used', 'dropped', 'non-finite outputs'],
       g.features.map(function (ft) { return [ft.name, ft.units || '', ft.counts.n_used, ft.counts.n_dropped, ft.counts.n_nonfinite]; }), [false, false, true, true, true]);
+    var size = sobol ? 'N' : 'r';
+    table(sec, 'table-gsa-resolution', 'Indices resolved at ' + size + ' = ' + (sobol ? g.N : g.r) + ' (interval half-width ≤ ' + fmt(g.resolution) +
+      (sobol ? ' and the index within [' + fmt(-g.resolution / 2) + ', ' + fmt(1 + g.resolution / 2) + ']' : ' × the largest μ*') +
+      '), and the size that would resolve the rest, estimated from the nested subsets (docs/gsa.md)',
+      ['feature', 'not resolved', 'of', 'S2 not resolved', size + ' to resolve'],
+      g.features.map(function (ft) {
+        var r = ft.resolved || {}, total = sobol ? 2 * g.parameter_names.length : g.parameter_names.length;
+        var any = r.n_unresolved || r.n_unresolved_s2;
+        return [ft.name, r.n_unresolved, total, sobol ? r.n_unresolved_s2 : '—', any ? (r.n_to_resolve === null ? 'unknown (intervals undefined)' : r.n_to_resolve) : '—'];
+      }), [false, true, true, true, true]);
     if (sobol && g.features.length) gsaHeatmap(sec, g);
     g.features.forEach(function (ft) {
       gsaBars(sec, g, ft, sobol);

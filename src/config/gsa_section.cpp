@@ -5,6 +5,7 @@
 #include <set>
 
 #include "common/error.hpp"
+#include "gsa/resolution.hpp"
 
 namespace phasmid::config {
 namespace {
@@ -76,7 +77,7 @@ gsa::GsaSpec parse_gsa_section(const Config& cfg, const std::vector<features::Fe
       throw Error(where(cfg, *m) + ": [gsa] method must be \"sobol\" or \"morris\"");
   }
   const bool sobol = spec.method == "sobol";
-  std::set<std::string> keys = {"method", "features", "seed", "bootstrap", "confidence"};
+  std::set<std::string> keys = {"method", "features", "seed", "bootstrap", "confidence", "resolution"};
   if (sobol) keys.insert({"N", "second_order", "scramble", "skip"});
   else keys.insert({"trajectories", "levels", "pool"});
   check_keys(cfg, *t, "gsa (method = \"" + spec.method + "\")", keys);
@@ -94,6 +95,10 @@ gsa::GsaSpec parse_gsa_section(const Config& cfg, const std::vector<features::Fe
       spec.bootstrap.confidence = number(cfg, node, key);
       if (!(spec.bootstrap.confidence > 0 && spec.bootstrap.confidence < 1))
         throw Error(where(cfg, node) + ": [gsa] confidence must lie in (0, 1), e.g. 0.95");
+    } else if (key == "resolution") {
+      spec.resolution = number(cfg, node, key);
+      const std::string why = gsa::resolution_error(spec.resolution);
+      if (!why.empty()) throw Error(where(cfg, node) + ": [gsa] " + why);
     } else if (sobol) parse_sobol_key(cfg, key, node, spec.saltelli);
     else parse_morris_key(cfg, key, node, spec.morris);
   }

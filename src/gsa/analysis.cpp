@@ -55,11 +55,17 @@ struct SobolLayout {
   bool second_order;
 };
 
+// Mean of the A and B outputs of the listed blocks.
+double ab_mean(const SobolLayout& L, const std::vector<std::size_t>& rows) {
+  double mean = 0;
+  for (std::size_t r : rows) mean += L.y[r * L.block] + L.y[r * L.block + L.block - 1];
+  return mean / (2.0 * rows.size());
+}
+
 // V: variance of the A and B outputs of the listed blocks together (divisor 2n).
 double ab_variance(const SobolLayout& L, const std::vector<std::size_t>& rows) {
-  double mean = 0, var = 0;
-  for (std::size_t r : rows) mean += L.y[r * L.block] + L.y[r * L.block + L.block - 1];
-  mean /= 2.0 * rows.size();
+  const double mean = ab_mean(L, rows);
+  double var = 0;
   for (std::size_t r : rows) {
     const double a = L.y[r * L.block] - mean, b = L.y[r * L.block + L.block - 1] - mean;
     var += a * a + b * b;
@@ -68,21 +74,26 @@ double ab_variance(const SobolLayout& L, const std::vector<std::size_t>& rows) {
 }
 
 // S1 (first dim slots), ST (next dim) and, with second order, S2 (dim x dim, upper triangle)
-// from the base-row blocks listed in `rows` (repetitions allowed).
+// from the base-row blocks listed in `rows` (repetitions allowed). The outputs are centred by
+// their A-and-B mean first: the S1 and S2 estimators are products of outputs, not invariant to
+// a shift of f, and an output whose mean is large against its spread (a period of 500 ms that
+// varies by a few ms) would otherwise add mean^2/V to their variance. The shift changes
+// neither estimator's expectation (E[f(AB) - f(A)] = 0) nor ST (differences only).
 std::vector<double> sobol_estimate(const SobolLayout& L, const std::vector<std::size_t>& rows) {
   const std::size_t D = L.dim, n = rows.size();
   std::vector<double> out(2 * D + (L.second_order ? D * D : 0), kNaN);
-  const double var = ab_variance(L, rows);
+  const double var = ab_variance(L, rows), c = ab_mean(L, rows);
   if (!(var > 0)) return out;
   std::vector<double> s1(D, 0.0), st(D, 0.0), s2(D * D, 0.0);
   for (std::size_t r : rows) {
     const double* blk = &L.y[r * L.block];
-    const double A = blk[0], B = blk[L.block - 1];
+    const double A = blk[0] - c, B = blk[L.block - 1] - c;
     for (std::size_t j = 0; j < D; ++j) {
-      s1[j] += B * (blk[1 + j] - A);
-      st[j] += (A - blk[1 + j]) * (A - blk[1 + j]);
+      const double ABj = blk[1 + j] - c;
+      s1[j] += B * (ABj - A);
+      st[j] += (A - ABj) * (A - ABj);
       if (L.second_order)
-        for (std::size_t k = j + 1; k < D; ++k) s2[j * D + k] += blk[1 + D + j] * blk[1 + k] - A * B;
+        for (std::size_t k = j + 1; k < D; ++k) s2[j * D + k] += (blk[1 + D + j] - c) * (blk[1 + k] - c) - A * B;
     }
   }
   for (std::size_t j = 0; j < D; ++j) {

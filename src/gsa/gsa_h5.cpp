@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "common/error.hpp"
+#include "gsa/resolution.hpp"
 
 namespace phasmid::gsa {
 namespace {
@@ -13,6 +14,10 @@ const char* const kNonFinitePolicy =
     "a base row's block (Sobol') or a trajectory (Morris) is dropped when any of its outputs is NaN or infinite";
 const char* const kCiMethod =
     "bootstrap over base rows (Sobol') or trajectories (Morris); index +- z * sd of the replicates (normal approximation)";
+
+const char* const kResolutionRule =
+    "resolved: half-width <= resolution and the index within [-resolution/2, 1 + resolution/2] (Sobol'), "
+    "half-width <= resolution * max mu* (Morris); n_to_resolve from the nested subsets' convergence";
 
 hsize_t h(std::size_t n) { return static_cast<hsize_t>(n); }
 
@@ -70,6 +75,8 @@ void write_method_attributes(io::H5Writer& w, const GsaResult& r) {
   w.set_attribute("/gsa", "bootstrap_seed", std::to_string(r.bootstrap.seed));
   w.set_attribute("/gsa", "confidence_interval", kCiMethod);
   w.set_attribute("/gsa", "nonfinite_outputs", kNonFinitePolicy);
+  w.set_attribute("/gsa", "resolution", r.resolution);
+  w.set_attribute("/gsa", "resolution_rule", kResolutionRule);
 }
 
 void write_counts(io::H5Writer& w, const std::string& g, const OutputCounts& c) {
@@ -105,6 +112,22 @@ void write_convergence(io::H5Writer& w, const GsaResult& r, const FeatureResult&
   }
 }
 
+std::vector<std::int64_t> flags(const std::vector<char>& v) { return {v.begin(), v.end()}; }
+
+// <index>_resolved (1 resolved, 0 not) and n_to_resolve (gsa/resolution.hpp).
+void write_resolution(io::H5Writer& w, const GsaResult& r, const FeatureResult& f, const std::string& g) {
+  const FeatureResolution res = resolve(r, f);
+  const hsize_t dim = h(r.parameters.size());
+  if (r.method == "sobol") {
+    w.write(g + "/S1_resolved", flags(res.S1), "1"), w.write(g + "/ST_resolved", flags(res.ST), "1");
+    if (!res.S2.empty()) w.write(g + "/S2_resolved", flags(res.S2), "1", {dim, dim});
+  } else {
+    w.write(g + "/mu_star_resolved", flags(res.mu_star), "1");
+  }
+  w.set_attribute(g, "n_unresolved", static_cast<double>(res.n_unresolved));
+  w.set_attribute(g, "n_to_resolve", res.n_to_resolve);
+}
+
 void write_feature(io::H5Writer& w, const GsaResult& r, const FeatureResult& f) {
   if (f.name.empty() || f.name == "design" || f.name.find('/') != std::string::npos)
     throw Error("gsa: '" + f.name + "' cannot be a feature name in /gsa (empty, 'design' or containing '/')");
@@ -127,6 +150,7 @@ void write_feature(io::H5Writer& w, const GsaResult& r, const FeatureResult& f) 
     w.write(g + "/mu_star_conf", m.mu_star_conf, f.unit), w.write(g + "/sigma", m.sigma, f.unit);
     write_counts(w, g, m.counts);
   }
+  write_resolution(w, r, f, g);
   w.set_attribute(g, "units", f.unit);
   write_convergence(w, r, f);
 }
@@ -241,6 +265,7 @@ GsaResult read_gsa_h5(const io::H5Reader& r) {
   out.bootstrap.confidence = r.read_double_attribute("/gsa", "confidence_level");
   out.bootstrap.resamples = count_attr(r, "/gsa", "bootstrap_resamples");
   out.bootstrap.seed = std::stoull(r.read_string_attribute("/gsa", "bootstrap_seed"));
+  if (r.has_attribute("/gsa", "resolution")) out.resolution = r.read_double_attribute("/gsa", "resolution");
   for (const std::string& name : r.children("/gsa"))
     if (name != "design") out.features.push_back(read_feature(r, out, name));
   return out;

@@ -43,6 +43,7 @@ struct GsaResult {
   MorrisOptions morris_options;       // morris
   MorrisDesign morris;
   BootstrapOptions bootstrap;
+  double resolution = 0.1;  // [gsa] resolution: the largest half-width of a resolved index (gsa/resolution.hpp)
   std::vector<FeatureResult> features;
 
   const std::vector<double>& unit_design() const { return method == "sobol" ? saltelli.unit : morris.unit; }

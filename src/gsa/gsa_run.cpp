@@ -39,6 +39,7 @@ GsaResult make_design(const GsaSpec& spec, const std::vector<Parameter>& paramet
   r.method = spec.method;
   r.parameters = parameters;
   r.bootstrap = spec.bootstrap;
+  r.resolution = spec.resolution;
   if (spec.method == "sobol") {
     r.saltelli_options = spec.saltelli;
     r.saltelli = saltelli_sample(parameters.size(), spec.saltelli);

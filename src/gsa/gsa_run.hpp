@@ -23,6 +23,7 @@ struct GsaSpec {
   SaltelliOptions saltelli;
   MorrisOptions morris;
   BootstrapOptions bootstrap;
+  double resolution = 0.1;  // the largest interval half-width of a resolved index (gsa/resolution.hpp)
   std::vector<std::string> features;  // names of the features to analyse (docs/features.md)
 };
 

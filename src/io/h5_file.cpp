@@ -344,6 +344,13 @@ double H5Reader::read_double_attribute(const std::string& object_path, const std
   return value;
 }
 
+bool H5Reader::has_attribute(const std::string& object_path, const std::string& name) const {
+  hid_t obj = open_object(file_, object_path);
+  const htri_t e = H5Aexists(obj, name.c_str());
+  H5Oclose(obj);
+  return e > 0;
+}
+
 static herr_t collect_link_name(hid_t, const char* name, const H5L_info_t*, void* data) {
   static_cast<std::vector<std::string>*>(data)->push_back(name);
   return 0;

@@ -63,6 +63,7 @@ class H5Reader {
   std::vector<std::string> read_strings(const std::string& path) const;
   std::string read_string_attribute(const std::string& object_path, const std::string& name) const;
   double read_double_attribute(const std::string& object_path, const std::string& name) const;
+  bool has_attribute(const std::string& object_path, const std::string& name) const;
   std::vector<std::string> children(const std::string& group_path) const;  // member names
   bool is_group(const std::string& path) const;
   hid_t id() const { return file_; }

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "gsa/gsa_h5.hpp"
+#include "gsa/resolution.hpp"
 
 namespace phasmid::report {
 namespace {
@@ -19,6 +20,23 @@ json rows(const std::vector<Indices>& levels, std::vector<double> Indices::*fiel
   json a = json::array();
   for (const Indices& x : levels) a.push_back(nums(x.*field));
   return a;
+}
+
+json flags(const std::vector<char>& v) {
+  json a = json::array();
+  for (char x : v) a.push_back(x != 0);
+  return a;
+}
+
+// Which indices are resolved at this N, and the size that would resolve the rest (NaN: null).
+// n_unresolved counts the indices the report draws (S1 and ST, or mu*); S2 apart.
+json resolution(const gsa::GsaResult& g, const gsa::FeatureResult& f) {
+  const gsa::FeatureResolution r = gsa::resolve(g, f);
+  json j = {{"n_unresolved", r.n_unresolved - r.n_unresolved_s2}, {"n_unresolved_s2", r.n_unresolved_s2},
+            {"n_to_resolve", std::isfinite(r.n_to_resolve) ? json(r.n_to_resolve) : json()}};
+  if (g.method == "sobol") j["S1"] = flags(r.S1), j["ST"] = flags(r.ST);
+  else j["mu_star"] = flags(r.mu_star);
+  return j;
 }
 
 json counts(const gsa::OutputCounts& c) {
@@ -51,7 +69,8 @@ json morris_feature(const gsa::FeatureResult& f) {
 
 json extract_gsa(const io::H5Reader& r) {
   const gsa::GsaResult g = gsa::read_gsa_h5(r);
-  json out = {{"method", g.method}, {"confidence", g.bootstrap.confidence}, {"resamples", g.bootstrap.resamples}};
+  json out = {{"method", g.method}, {"confidence", g.bootstrap.confidence}, {"resamples", g.bootstrap.resamples},
+              {"resolution", g.resolution}};
   json names = json::array(), units = json::array();
   for (const auto& p : g.parameters) names.push_back(p.name), units.push_back(p.unit);
   out["parameter_names"] = names;
@@ -63,6 +82,7 @@ json extract_gsa(const io::H5Reader& r) {
     json j = g.method == "sobol" ? sobol_feature(f) : morris_feature(f);
     j["name"] = f.name;
     j["units"] = f.unit;
+    j["resolved"] = resolution(g, f);
     features.push_back(j);
   }
   out["features"] = features;

@@ -19,6 +19,7 @@
 
 #include "common/error.hpp"
 #include "gsa/gsa_h5.hpp"
+#include "gsa/resolution.hpp"
 #include "report/report.hpp"
 #include "report_fixtures.hpp"
 #include "build_info.hpp"
@@ -482,14 +483,26 @@ TEST(ReportUnits, ExtractGsaReadsTheStoredIndices) {
   }
   EXPECT_EQ(y.at("convergence").at("n"), (std::vector<int>{8, 16, 32, 64}));
   EXPECT_EQ(y.at("counts").at("n_used"), 64);
+  // Which indices the report greys: the analysis' own rule, and at N = 64 some of them.
+  const auto res = phasmid::gsa::resolve(stored, stored.features[0]);
+  std::size_t unresolved = 0;
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(y.at("resolved").at("S1").at(k).get<bool>(), res.S1[k] != 0);
+    EXPECT_EQ(y.at("resolved").at("ST").at(k).get<bool>(), res.ST[k] != 0);
+    unresolved += !res.S1[k] + !res.ST[k];
+  }
+  EXPECT_GT(unresolved, 0u);
+  EXPECT_EQ(y.at("resolved").at("n_unresolved"), unresolved);
+  EXPECT_EQ(y.at("resolved").at("n_to_resolve").get<double>(), res.n_to_resolve);
+  EXPECT_EQ(g.at("resolution"), 0.1);
 }
 
 TEST(ReportRender, GsaSobol) {
-  expect_renders("gsa_sobol", gsa_file("sobol"), {"table-gsa-counts", "fig-gsa-heatmap", "fig-gsa-y", "fig-gsa-conv-y"},
+  expect_renders("gsa_sobol", gsa_file("sobol"), {"table-gsa-counts", "table-gsa-resolution", "fig-gsa-heatmap", "fig-gsa-y", "fig-gsa-conv-y"},
                  {"fig-gsa-plane-y"});
 }
 
 TEST(ReportRender, GsaMorris) {
-  expect_renders("gsa_morris", gsa_file("morris"), {"table-gsa-counts", "fig-gsa-y", "fig-gsa-plane-y", "fig-gsa-conv-y"},
+  expect_renders("gsa_morris", gsa_file("morris"), {"table-gsa-counts", "table-gsa-resolution", "fig-gsa-y", "fig-gsa-plane-y", "fig-gsa-conv-y"},
                  {"fig-gsa-heatmap"});
 }
