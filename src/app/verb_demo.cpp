@@ -37,7 +37,7 @@ const DemoStep kSteps[] = {
     {"sweep", "configs/demo_coupling_sweep.toml", "demo_coupling_sweep.h5",
      "small sweep of the intersegmental coupling of the three-leg network"},
     {"gsa", "configs/gsa_single_joint.toml", "gsa_single_joint.h5",
-     "Sobol' indices of the FTi network's period, flexion fraction and angles over its drives (rate motoneurons)"},
+     "Sobol' indices of the FTi network's period and extremal angles over its three drives (rate motoneurons), N = 1024"},
 };
 
 std::string self_path() {
