@@ -35,7 +35,11 @@ else
   echo "phasmid setup: WARNING: no optimised SUNDIALS build; using Debian's -O0 libraries (same numbers, slower)" >&2
   SUNDIALS_ARG=(-USUNDIALS_DIR)
 fi
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${SUNDIALS_ARG[@]}" >/dev/null
+# A compiler cache, when the machine has one, makes a second checkout's build a matter of
+# linking (the base directory makes its entries independent of where the tree is checked out).
+LAUNCHER=()
+if command -v ccache >/dev/null; then LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); export CCACHE_BASEDIR="$PWD"; fi
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${SUNDIALS_ARG[@]}" "${LAUNCHER[@]}" >/dev/null
 cmake --build build -j"$(nproc)"
 
 # The Python module (docs/python.md): a .pth file in Debian's Python's site-packages points

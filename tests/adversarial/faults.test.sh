@@ -2,7 +2,11 @@
 # Faults of the adversarial corpus (docs/reliability.md): a full disk, a read-only directory,
 # SIGKILL and SIGINT in the middle of a run, two writers on one output. Usage:
 # faults.test.sh PHASMID SOURCE_DIR. Mounting a tmpfs needs root; without it those cases skip.
+# Nothing here assumes how fast phasmid runs: a signal is sent once there is a sign that the
+# run is under way (journal records, the output's temporary file), with far more work left
+# than was seen done. HANG_SECONDS only catches a run that shows no sign at all.
 set -u
+HANG_SECONDS=${HANG_SECONDS:-300}
 PHASMID=$(readlink -f "$1"); SRC=$(readlink -f "$2")
 tmp=$(mktemp -d); mnt="$tmp/mnt"; mkdir -p "$mnt"
 cleanup() { mountpoint -q "$mnt" && umount "$mnt"; rm -rf "$tmp"; }
@@ -31,16 +35,31 @@ else
   echo "SKIP: cannot mount a tmpfs (not root?): full disk and read-only directory untested"; skip=$((skip+2))
 fi
 
-# A sweep of six points, each a few hundred ms, to interrupt.
+# A sweep of 51 points of 3000 ms each, to interrupt. The signals come once 3 points are
+# journalled (2 in the two-writers case): 48 points still to compute then, against the sign's
+# latency of one poll (0.02 s), and the same work per point as the 3 seen done.
+n_points=51
 cp "$FTI" "$tmp/sweep.toml"
 sed -i 's/^t_end_ms = .*/t_end_ms = 3000/; s/^discard_ms = .*/discard_ms = 1000/' "$tmp/sweep.toml"
-printf '[sweep]\ndesign = "grid"\n[[sweep.parameter]]\nname = "middle.fti.b_v"\nvalues = [10.0, 11.0, 12.0, 13.0, 14.0, 15.0]\n' >>"$tmp/sweep.toml"
+values=$(awk -v n=$n_points 'BEGIN { for (i = 0; i < n; i++) printf "%s%.1f", (i ? ", " : ""), 10 + i / 10 }')
+printf '[sweep]\ndesign = "grid"\n[[sweep.parameter]]\nname = "middle.fti.b_v"\nvalues = [%s]\n' "$values" >>"$tmp/sweep.toml"
 "$PHASMID" sweep "$tmp/sweep.toml" -o "$tmp/whole.h5" -q -j 1 || bad "uninterrupted sweep failed"
 features() { h5dump -g /sweep "$1" 2>/dev/null | grep -v "^HDF5"; }  # features, status and points of every point
+# wait_records OUT N PID WHAT: until OUT's journal holds N point records (its header line aside).
+# Fails if the sweep ends first (then the sweep was not interrupted mid-way: this test's premise)
+# or shows no such sign within HANG_SECONDS.
+wait_records() {
+  local journal="$1.journal" end=$((SECONDS + HANG_SECONDS))
+  until [ -s "$journal" ] && [ $(($(wc -l <"$journal") - 1)) -ge "$2" ]; do
+    kill -0 "$3" 2>/dev/null || { bad "$4: the sweep ended before $2 points were journalled"; return 1; }
+    [ $SECONDS -lt $end ] || { bad "$4: hung: fewer than $2 points journalled after $HANG_SECONDS s"; return 1; }
+    sleep 0.02
+  done
+}
 for sig in KILL INT; do
   out="$tmp/$sig.h5"
   "$PHASMID" sweep "$tmp/sweep.toml" -o "$out" -q -j 1 & pid=$!
-  for _ in $(seq 100); do [ -s "$out.journal" ] && [ "$(wc -l <"$out.journal")" -ge 3 ] && break; sleep 0.1; done
+  wait_records "$out" 3 $pid "SIG$sig"
   kill -$sig $pid; wait $pid; rc=$?
   [ ! -e "$out" ] && ok || bad "SIG$sig: a complete-looking $out exists after the signal"
   [ $rc -ne 0 ] && ok || bad "SIG$sig: exit 0 after the signal"
@@ -49,17 +68,28 @@ for sig in KILL INT; do
     || bad "SIG$sig: --resume differs from the uninterrupted sweep"
 done
 
-# SIGKILL during simulate: no output file, at most its temporary. 200 s of model time, so that
-# the run is still going when the signal comes however fast the integrator is.
-sed 's/^t_end_ms = .*/t_end_ms = 200000/' "$FTI" >"$tmp/long.toml"
-"$PHASMID" simulate "$tmp/long.toml" -o "$tmp/sim.h5" -q & pid=$!
-sleep 0.5; kill -KILL $pid; wait $pid
+# SIGKILL during simulate: no output file, at most its temporary. A run as long as simulate
+# takes (t_end_ms = 1e7, the largest accepted: about 10^4 s of walking, a sample a second,
+# around a thousand times the 9 s run), killed as soon as its temporary file exists (the
+# samples stream into it as they are reached).
+sed 's/^t_end_ms = .*/t_end_ms = 1e7/; s/^output_dt_ms = .*/output_dt_ms = 1000.0/' "$FTI" >"$tmp/long.toml"
+"$PHASMID" simulate "$tmp/long.toml" -o "$tmp/sim.h5" -q 2>"$tmp/err" & pid=$!
+end=$((SECONDS + HANG_SECONDS))
+until [ -e "$tmp/sim.h5.tmp" ] || ! kill -0 $pid 2>/dev/null || [ $SECONDS -ge $end ]; do sleep 0.02; done
+if [ -e "$tmp/sim.h5.tmp" ]; then ok
+elif kill -0 $pid 2>/dev/null; then bad "SIGKILL simulate: hung: no $tmp/sim.h5.tmp after $HANG_SECONDS s"
+else bad "SIGKILL simulate: the run ended before its temporary file appeared: $(cat "$tmp/err")"; fi
+kill -KILL $pid; wait $pid; rc=$?
+[ $rc -eq 137 ] && ok || bad "SIGKILL simulate: exit $rc, not killed"
 [ ! -e "$tmp/sim.h5" ] && ok || bad "SIGKILL simulate: a complete-looking output exists"
 
-# Two writers: the second sweep on a busy output is refused and leaves the first one's journal whole.
+# Two writers: the second sweep on a busy output is refused and leaves the first one's journal
+# whole. The first is stopped (SIGSTOP: it keeps its lock and its journal open) while the others
+# try, so that it is mid-sweep then however long they take.
 out="$tmp/two.h5"
 "$PHASMID" sweep "$tmp/sweep.toml" -o "$out" -q -j 1 & pid=$!
-for _ in $(seq 100); do [ -s "$out.journal" ] && [ "$(wc -l <"$out.journal")" -ge 2 ] && break; sleep 0.1; done
+wait_records "$out" 2 $pid "two writers"
+kill -STOP $pid
 lines_before=$(wc -l <"$out.journal")
 "$PHASMID" sweep "$tmp/sweep.toml" -o "$out" -q -j 1 --resume 2>"$tmp/err"; rc=$?
 one_line_error $rc "$tmp/err" "another phasmid sweep is running on this output" && ok || bad "second writer: rc=$rc, stderr: $(cat "$tmp/err")"
@@ -67,6 +97,7 @@ one_line_error $rc "$tmp/err" "another phasmid sweep is running on this output" 
 "$PHASMID" sweep "$tmp/sweep.toml" -o "$out" -q -j 1 2>"$tmp/err"; rc=$?
 one_line_error $rc "$tmp/err" "journal of an unfinished sweep|another phasmid sweep is running" && ok || bad "second writer without --resume: rc=$rc, stderr: $(cat "$tmp/err")"
 [ "$(wc -l <"$out.journal")" -ge "$lines_before" ] && ok || bad "second writer without --resume truncated the journal"
+kill -CONT $pid
 wait $pid || bad "the first sweep failed after the second was refused"
 [ "$(features "$out")" = "$(features "$tmp/whole.h5")" ] && ok || bad "the first sweep's result differs after a refused second writer"
 

@@ -12,6 +12,13 @@ for f in single_joint_fti fit_fti_section31 sensitivity_single_joint demo_coupli
   if [ -s "$tmp/demo/$f.h5" ] && [ -s "$tmp/demo/$f.html" ] && [ ! -e "$tmp/demo/$f.h5.tmp" ]; then pass=$((pass+1))
   else echo "FAIL: demo/$f.h5 or .html missing (or a .tmp left)"; ls -la "$tmp/demo"; fail=$((fail+1)); fi
 done
+# Every Sobol' index the demo prints is resolved (docs/gsa.md, "Resolved indices": half-width
+# <= 0.1 and the index within [-0.05, 1.05]): nothing marked, and the file says the same.
+grep -q "not resolved" "$tmp/out" "$tmp/err" && { echo "FAIL: the demo prints unresolved indices: $(grep -h "not resolved" "$tmp/out" "$tmp/err")"; fail=$((fail+1)); } || pass=$((pass+1))
+for ft in middle.fti.period_ms middle.fti.angle_min_deg middle.fti.angle_max_deg; do
+  n=$(h5dump -a "/gsa/$ft/n_unresolved" "$tmp/demo/gsa_single_joint.h5" 2>/dev/null | grep -oE '\(0\): [0-9.e+-]+' | grep -oE '[0-9.e+-]+$')
+  [ "$n" = "0" ] && pass=$((pass+1)) || { echo "FAIL: $ft: n_unresolved '$n' in gsa_single_joint.h5"; fail=$((fail+1)); }
+done
 # It tells the user where the files are.
 grep -q "demo_coupling_sweep.html" "$tmp/out" "$tmp/err" && pass=$((pass+1)) || { echo "FAIL: demo does not print the report paths"; fail=$((fail+1)); }
 echo "$pass passed, $fail failed"

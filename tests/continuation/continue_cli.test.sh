@@ -50,8 +50,11 @@ for ds in parameter period_ms stable multipliers_real multipliers_imag multiplie
 done
 "$PHASMID" report "$tmp/sl.h5" -o "$tmp/sl.html" || { echo "FAIL report"; fail=1; }
 if [ -x /usr/bin/chromium ]; then
-  body=$(timeout 120 /usr/bin/chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage \
-    --user-data-dir="$tmp/profile" --virtual-time-budget=15000 --dump-dom "file://$tmp/sl.html" 2>/dev/null | grep -o '<body[^>]*>' | head -1)
+  # 300 s: a hang guard only (the page's 15 s are Chromium's virtual time, not the machine's).
+  timeout 300 /usr/bin/chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage \
+    --user-data-dir="$tmp/profile" --virtual-time-budget=15000 --dump-dom "file://$tmp/sl.html" >"$tmp/dom" 2>/dev/null
+  [ $? -eq 124 ] && { echo "FAIL report rendering: chromium hung (still running after 300 s)"; fail=1; }
+  body=$(grep -o '<body[^>]*>' "$tmp/dom" | head -1)
   for want in 'data-status="ok"' fig-continuation-period_ms fig-continuation-multipliers table-continuation-special; do
     grep -q "$want" <<<"$body" || { echo "FAIL report rendering: no $want in $body"; fail=1; }
   done

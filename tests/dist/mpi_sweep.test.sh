@@ -34,20 +34,27 @@ mpirun_np3 "$PHASMID" simulate "$SRC/configs/fti_mechanical.toml" -o sim.h5 -q >
 [ $rc -ne 0 ] && [ "$(grep -c "runs in one process" err)" -eq 1 ] && [ ! -e sim.h5 ] && ok \
   || bad "simulate under mpirun (rc=$rc: $(cat err))"
 
-# kill -9 one worker rank mid-way; Open MPI then ends the job; the journal keeps every point
-sed 's/t_end_ms = 3000/t_end_ms = 150000/; s/points = 5/points = 3/' "$cfg" >slow.toml   # 12 points
+# kill -9 one worker rank mid-way; Open MPI then ends the job; the journal keeps every point.
+# The worker is found first and killed once 3 points are journalled, 37 of the same work each
+# still to come (the sign's latency: one poll, 0.02 s). The 300 s only catch a hung job.
+n=40
+sed 's/t_end_ms = 3000/t_end_ms = 150000/; s/points = 5/points = 10/' "$cfg" >slow.toml   # 10 x 4 points
 "$PHASMID" sweep slow.toml -o slow_single.h5 -j 1 -q || bad "single-process slow sweep"
 mpirun_np3 "$PHASMID" sweep slow.toml -o k.h5 -q >/dev/null 2>&1 &
 launcher=$!
-victim=""
-for _ in $(seq 600); do
-  [ -e k.h5.journal ] && [ "$(wc -l <k.h5.journal)" -ge 4 ] && victim=$(rank_pid "$launcher" 1) && [ -n "$victim" ] && break
-  sleep 0.05
+victim=""; end=$((SECONDS + 300))
+until [ -n "$victim" ] || ! kill -0 $launcher 2>/dev/null || [ $SECONDS -ge $end ]; do
+  victim=$(rank_pid "$launcher" 1); [ -n "$victim" ] || sleep 0.02
 done
-if [ -n "$victim" ]; then kill -9 "$victim"; else bad "no worker rank found to kill"; fi
+until [ -z "$victim" ] || { [ -e k.h5.journal ] && [ "$(wc -l <k.h5.journal)" -ge 4 ]; }; do
+  kill -0 $launcher 2>/dev/null || { bad "killed worker: the job ended before 3 points were journalled"; break; }
+  [ $SECONDS -lt $end ] || { bad "killed worker: hung: fewer than 3 points journalled after 300 s"; break; }
+  sleep 0.02
+done
+if [ -n "$victim" ]; then kill -9 "$victim"; else bad "no worker rank found to kill"; kill $launcher 2>/dev/null; fi
 wait "$launcher"; rc=$?
 kept=$(($(wc -l <k.h5.journal) - 1))
-[ $rc -ne 0 ] && [ ! -e k.h5 ] && [ "$kept" -ge 3 ] && [ "$kept" -lt 12 ] && ok \
+[ $rc -ne 0 ] && [ ! -e k.h5 ] && [ "$kept" -ge 3 ] && [ "$kept" -lt $n ] && ok \
   || bad "killed worker: rc=$rc, $kept points journalled, k.h5 $( [ -e k.h5 ] && echo exists || echo absent)"
 mpirun_np3 "$PHASMID" sweep slow.toml -o k.h5 -q --resume 2>err && same "resumed after a killed worker" slow_single.h5 k.h5 \
   || bad "resume after a killed worker: $(cat err)"

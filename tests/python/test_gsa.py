@@ -4,16 +4,14 @@ indices inside the estimates' intervals, Morris screening, the CLI's error messa
 import os
 import re
 import signal
-import subprocess
-import sys
-import time
+import tomllib
 
 import h5py
 import numpy as np
 import pytest
 
 import phasmid
-from conftest import assert_same_bits, cli, config, h5_datasets
+from conftest import Child, assert_same_bits, cli, config, h5_datasets
 from test_errors import cli_error
 
 # Analytic Sobol' indices of the Ishigami function, a = 7, b = 0.1 (Sobol' & Levitan 1999),
@@ -163,7 +161,8 @@ def test_gsa_errors_have_cli_message(tmp_path, replace):
 
 INTERRUPTED = r"""
 import sys, phasmid
-print("started", flush=True)
+from conftest import print_running_when_guarded
+print_running_when_guarded()
 try:
     phasmid.gsa(sys.argv[1], threads=1)
 except KeyboardInterrupt as e:
@@ -172,13 +171,18 @@ except KeyboardInterrupt as e:
 
 
 def test_ctrl_c_interrupts_a_gsa():
-    # 32 (D + 2) = 192 runs of 3000 ms: several seconds on one thread.
-    p = subprocess.Popen([sys.executable, "-c", INTERRUPTED, config("gsa_single_joint.toml")],
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=os.environ)
-    assert p.stdout.readline().strip() == "started"
-    time.sleep(1.5)
-    p.send_signal(signal.SIGINT)
-    out, err = p.communicate(timeout=60)
-    assert p.returncode == 0, err
-    m = re.search(r"interrupted: gsa interrupted with (\d+) of 192 points done", out)
-    assert m and int(m.group(1)) < 192, out + err
+    # The shipped config's N (D + 2) runs of its t_end_ms on one thread, all of them still to
+    # come when the sweep engine installs its SIGINT handler (the sign the child prints
+    # "running" on, within a millisecond): SIGINT then ends the analysis with most not done.
+    path = config("gsa_single_joint.toml")
+    with open(path, "rb") as f:
+        toml = tomllib.load(f)
+    assert toml["gsa"]["second_order"] is False
+    n_points = toml["gsa"]["N"] * (len(toml["sweep"]["parameter"]) + 2)
+    child = Child(INTERRUPTED, path)
+    child.wait_for_line("running")
+    child.p.send_signal(signal.SIGINT)
+    rc, out, err = child.finish()
+    assert rc == 0, err
+    m = re.search(r"interrupted: gsa interrupted with (\d+) of (\d+) points done", out)
+    assert m and int(m.group(2)) == n_points and int(m.group(1)) < n_points, out + err

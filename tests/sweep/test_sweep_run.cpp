@@ -261,18 +261,27 @@ int wait_status(pid_t pid) {
   return st;
 }
 
-// Waits until the journal of a running sweep holds at least `n` records.
-bool wait_for_records(const fs::path& journal, size_t n, double timeout_s) {
-  auto t0 = std::chrono::steady_clock::now();
-  while (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < timeout_s) {
-    if (fs::exists(journal) && journal_records(journal) >= n) return true;
+// Waits until the journal of the sweep running as `pid` holds at least `n` records: "" once
+// it does, else why not: the sweep ended first, or no such sign within the hang guard (which
+// only catches a hung sweep; it is no limit on how long a point may take).
+std::string wait_for_records(pid_t pid, const fs::path& journal, size_t n) {
+  const auto hang = std::chrono::steady_clock::now() + std::chrono::seconds(300);
+  while (!(fs::exists(journal) && journal_records(journal) >= n)) {
+    siginfo_t info{};
+    if (waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid)
+      return "the sweep ended with " + std::to_string(journal_records(journal)) + " points journalled, before " +
+             std::to_string(n);
+    if (std::chrono::steady_clock::now() > hang) return "hung: fewer than " + std::to_string(n) + " points journalled after 300 s";
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  return false;
+  return "";
 }
 
-// Slow enough per point (~50-100 ms) to be caught mid-sweep: a long prescribed-switching run.
-const char* kSlowSweep = R"([model]
+// Many points of the same work each (a long prescribed-switching run), so that once a few are
+// journalled (the sign the signals wait for) most of the sweep is still to come: the signal
+// lands mid-sweep whatever the machine's speed, the poll (20 ms) being the only latency.
+constexpr size_t kSlowPoints = 80;
+const std::string kSlowSweep = R"([model]
 type = "mechanical_joint"
 leg = "middle"
 joint = "fti"
@@ -281,7 +290,7 @@ t_end_ms = 60000
 discard_ms = 1000
 [sweep]
 design = "lhs"
-points = 40
+points = )" + std::to_string(kSlowPoints) + R"(
 seed = 11
 [[sweep.parameter]]
 name = "middle.fti.b_v"
@@ -301,31 +310,35 @@ TEST(SweepCli, KilledAndInterruptedProcessesResumeToTheUninterruptedResult) {
   const std::string bin = PHASMID_BINARY, cfg = cfg_path.string();
   const fs::path out = dir / "cli.h5", journal = dir / "cli.h5.journal";
 
-  // 1. SIGKILL: no chance to clean up; the journal alone must carry the finished points.
+  // 1. SIGKILL once 3 points are journalled: no chance to clean up; the journal alone must
+  // carry the finished points.
   pid_t pid = spawn({bin, "sweep", cfg, "-o", out.string(), "-j", "2", "-q"}, dir / "err1");
   ASSERT_GT(pid, 0);
-  ASSERT_TRUE(wait_for_records(journal, 3, 120));
+  std::string why = wait_for_records(pid, journal, 3);
   kill(pid, SIGKILL);
   int st = wait_status(pid);
-  ASSERT_TRUE(WIFSIGNALED(st)) << "the sweep finished before it could be killed; make kSlowSweep slower";
+  ASSERT_EQ(why, "");
+  ASSERT_TRUE(WIFSIGNALED(st)) << "the sweep of " << kSlowPoints << " points ended by itself";
   EXPECT_FALSE(fs::exists(out));
   const size_t after_kill = journal_records(journal);
+  ASSERT_LT(after_kill, kSlowPoints) << "every point was done before SIGKILL";
 
-  // 2. SIGINT (Ctrl-C) on the resumed run: finishes running points, says how to resume, exit 130.
+  // 2. SIGINT (Ctrl-C) on the resumed run once 3 more points are journalled: finishes the
+  // running points, says how to resume, exit 130.
   pid = spawn({bin, "sweep", cfg, "-o", out.string(), "-j", "2", "-q", "--resume"}, dir / "err2");
-  ASSERT_TRUE(wait_for_records(journal, after_kill + 3, 120));
-  kill(pid, SIGINT);
+  ASSERT_GT(pid, 0);
+  why = wait_for_records(pid, journal, after_kill + 3);
+  kill(pid, why.empty() ? SIGINT : SIGKILL);
   st = wait_status(pid);
-  if (WIFEXITED(st) && WEXITSTATUS(st) == 0) {
-    GTEST_SKIP() << "sweep completed before SIGINT arrived";
-  }
-  ASSERT_TRUE(WIFEXITED(st));
-  EXPECT_EQ(WEXITSTATUS(st), 130);
+  ASSERT_EQ(why, "");
+  ASSERT_TRUE(WIFEXITED(st)) << "the sweep did not exit after SIGINT";
+  EXPECT_EQ(WEXITSTATUS(st), 130) << "the sweep of " << kSlowPoints << " points was not interrupted";
   std::ifstream e(dir / "err2");
   std::string msg((std::istreambuf_iterator<char>(e)), {});
   EXPECT_NE(msg.find("--resume"), std::string::npos) << msg;
   EXPECT_FALSE(fs::exists(out));
   EXPECT_GT(journal_records(journal), after_kill);
+  EXPECT_LT(journal_records(journal), kSlowPoints);
 
   // 3. Resume to the end, single-threaded this time, and compare with one uninterrupted run.
   pid = spawn({bin, "sweep", cfg, "-o", out.string(), "-j", "1", "-q", "--resume"}, dir / "err3");
