@@ -685,9 +685,9 @@
       : ft.name + ': Morris μ* (mean |elementary effect|) per parameter; whiskers: ' + Math.round(100 * g.confidence) + ' % bootstrap intervals') +
       unresolvedText(g, ft, sobol), 300);
     var sets = sobol
-      ? [{ label: 'S1', data: ft.S1, errors: ft.S1_conf, backgroundColor: resolvedColors(r.S1, PALETTE[0], n) },
-         { label: 'ST', data: ft.ST, errors: ft.ST_conf, backgroundColor: resolvedColors(r.ST, PALETTE[1], n) }]
-      : [{ label: 'μ*', data: ft.mu_star, errors: ft.mu_star_conf, backgroundColor: resolvedColors(r.mu_star, PALETTE[0], n) }];
+      ? [{ label: 'S1', data: ft.S1, errors: ft.S1_conf, backgroundColor: resolvedColors(r.S1, PALETTE[0], n), borderColor: PALETTE[0], borderWidth: 1.5 },
+         { label: 'ST', data: ft.ST, errors: ft.ST_conf, backgroundColor: resolvedColors(r.ST, PALETTE[1], n), borderColor: PALETTE[1], borderWidth: 1.5 }]
+      : [{ label: 'μ*', data: ft.mu_star, errors: ft.mu_star_conf, backgroundColor: resolvedColors(r.mu_star, PALETTE[0], n), borderColor: PALETTE[0], borderWidth: 1.5 }];
     draw(id, f, {
       type: 'bar', data: { labels: g.parameter_names, datasets: sets }, plugins: [whiskers],
       options: { plugins: { title: titleOpt(withUnits(ft.name, ft.units)) },
