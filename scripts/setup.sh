@@ -38,7 +38,11 @@ fi
 # A compiler cache, when the machine has one, makes a second checkout's build a matter of
 # linking (the base directory makes its entries independent of where the tree is checked out).
 LAUNCHER=()
-if command -v ccache >/dev/null; then LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); export CCACHE_BASEDIR="$PWD"; fi
+if command -v ccache >/dev/null; then
+  LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  # The precompiled headers (CMakeLists.txt, PHASMID_PCH) are cached only with these.
+  export CCACHE_BASEDIR="$PWD" CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime
+fi
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${SUNDIALS_ARG[@]}" "${LAUNCHER[@]}" >/dev/null
 cmake --build build -j"$(nproc)"
 
