@@ -62,9 +62,8 @@ double ab_mean(const SobolLayout& L, const std::vector<std::size_t>& rows) {
   return mean / (2.0 * rows.size());
 }
 
-// V: variance of the A and B outputs of the listed blocks together (divisor 2n).
-double ab_variance(const SobolLayout& L, const std::vector<std::size_t>& rows) {
-  const double mean = ab_mean(L, rows);
+// V: variance of the A and B outputs of the listed blocks together (divisor 2n), about their mean.
+double ab_variance(const SobolLayout& L, const std::vector<std::size_t>& rows, double mean) {
   double var = 0;
   for (std::size_t r : rows) {
     const double a = L.y[r * L.block] - mean, b = L.y[r * L.block + L.block - 1] - mean;
@@ -82,7 +81,7 @@ double ab_variance(const SobolLayout& L, const std::vector<std::size_t>& rows) {
 std::vector<double> sobol_estimate(const SobolLayout& L, const std::vector<std::size_t>& rows) {
   const std::size_t D = L.dim, n = rows.size();
   std::vector<double> out(2 * D + (L.second_order ? D * D : 0), kNaN);
-  const double var = ab_variance(L, rows), c = ab_mean(L, rows);
+  const double c = ab_mean(L, rows), var = ab_variance(L, rows, c);
   if (!(var > 0)) return out;
   std::vector<double> s1(D, 0.0), st(D, 0.0), s2(D * D, 0.0);
   for (std::size_t r : rows) {
@@ -149,7 +148,7 @@ SobolIndices sobol_analyze(std::size_t dim, bool second_order, const std::vector
     sweep::SplitMix64 rng{bootstrap.seed};
     for (std::size_t b = 0; b < bootstrap.resamples; ++b) spread.add(sobol_estimate(L, resample(rows, rng)));
     conf = spread.half_width(normal_quantile(0.5 + bootstrap.confidence / 2));
-    s.variance = ab_variance(L, rows);
+    s.variance = ab_variance(L, rows, ab_mean(L, rows));
   }
   auto slice = [&](const std::vector<double>& v, std::size_t from, std::size_t n) {
     return std::vector<double>(v.begin() + from, v.begin() + from + n);
