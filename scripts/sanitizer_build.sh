@@ -23,7 +23,7 @@ configure_sanitizer_build() {
   fi
   local launcher=()
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache) && export CCACHE_BASEDIR="$PWD"
-  cmake -S . -B "$SANITIZER_BUILD" -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+  cmake -S . -B "$SANITIZER_BUILD" -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
     "${launcher[@]}" -DPHASMID_FUZZ=ON -DPHASMID_BUILD_TESTS=ON -DPHASMID_BUILD_BENCH=OFF -DPHASMID_WITH_MPI=OFF -DPHASMID_PYTHON=OFF \
     "-DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -g" >/dev/null
 }

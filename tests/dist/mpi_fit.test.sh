@@ -10,7 +10,7 @@ source "$SRC/tests/dist/mpi_env.sh"   # skips without MPI; runs in a fresh tempo
 cfg="$SRC/configs/fit_fti_section31.toml"
 args=(--multistart 6 --profile middle.fti.k_F.flexion --profile middle.fti.k_E.extension -q)
 "$PHASMID" fit "$cfg" "${args[@]}" -o single.h5 || bad "single-process fit"
-mpirun_np3 "$PHASMID" fit "$cfg" "${args[@]}" -o mpi.h5 || bad "mpirun fit"
+mpirun_np3 "$PHASMID" fit "$cfg" "${args[@]}" -o mpi.h5 || bad "mpirun fit (exit $?)"
 if h5diff -q --exclude-path /fit/report --exclude-path /fit/summary --exclude-attribute / \
      --exclude-attribute /fit --exclude-attribute /trajectory single.h5 mpi.h5; then ok; else bad "/fit datasets differ"; fi
 for d in /fit/multistart/final_cost /fit/profile/middle.fti.k_F.flexion/cost /fit/profile/middle.fti.k_E.extension/delta_chi2; do
