@@ -448,3 +448,57 @@ def test_load_of_a_path_of_a_wrong_type(path):
     with pytest.raises(phasmid.Error) as e:
         phasmid.load(path)
     one_line(e, "path")
+
+
+def test_an_unfinished_gsa_into_out_resumes_to_the_same_indices(isl, tmp_path):
+    out = tmp_path / "g.h5"
+    with pytest.raises(phasmid.Error) as e:
+        phasmid.gsa(isl.gsa_cfg, threads=1, out=out, _stop_after=3)
+    one_line(e, "gsa stopped with 3 of", "%s.journal" % out, 'phasmid.gsa(..., out="%s", resume=True)' % out)
+    g = phasmid.gsa(isl.gsa_cfg, threads=1, out=out, resume=True)
+    assert g.outcome["n_recovered"] == 3 and listing(tmp_path) == ["g.h5"]
+    assert (g.features["y"].S1 == isl.gsa.features["y"].S1).all()
+
+
+INTERRUPTED_INTO_OUT = r"""
+import sys, phasmid
+from conftest import print_running_when_guarded
+print_running_when_guarded()
+try:
+    phasmid.gsa(sys.argv[1], threads=1, out=sys.argv[2])
+except KeyboardInterrupt as e:
+    print("interrupted: %s" % e, flush=True)
+"""
+
+
+def test_ctrl_c_of_a_gsa_into_out_names_its_journal_and_the_call_that_resumes(tmp_path):
+    # As test_gsa.test_ctrl_c_interrupts_a_gsa: SIGINT once the sweep engine's handler is in
+    # place (the child's "running"), with most of the shipped config's points still to come.
+    import signal
+    out = tmp_path / "g.h5"
+    child = Child(INTERRUPTED_INTO_OUT, config("gsa_single_joint.toml"), str(out))
+    child.wait_for_line("running")
+    child.p.send_signal(signal.SIGINT)
+    rc, text, err = child.finish()
+    assert rc == 0, err
+    assert "interrupted: gsa interrupted with " in text, text + err
+    assert "kept in %s.journal" % out in text and 'phasmid.gsa(..., out="%s", resume=True)' % out in text, text
+    assert listing(tmp_path) == ["g.h5.journal"]
+
+
+def test_fit_result_save_over_its_data_or_parameter_table_is_refused(tmp_path):
+    # A copy of the shipped kinematic fit with its recording and parameter table next to it.
+    src = os.path.join(os.path.dirname(config("x")), "..", "datasets", "synthetic")
+    (tmp_path / "datasets" / "synthetic").mkdir(parents=True)
+    (tmp_path / "configs").mkdir()
+    for name in ("fti_kinematics_synthetic.csv", "fti_kinematics_params.tsv"):
+        (tmp_path / "datasets" / "synthetic" / name).write_bytes(open(os.path.join(src, name), "rb").read())
+    cfg = tmp_path / "configs" / "fit.toml"
+    cfg.write_text(open(config("fit_fti_kinematic_synthetic.toml")).read())
+    fit = phasmid.fit(cfg, threads=1, max_iterations=2)
+    data = tmp_path / "datasets" / "synthetic" / "fti_kinematics_synthetic.csv"
+    table = tmp_path / "datasets" / "synthetic" / "fti_kinematics_params.tsv"
+    for target in (cfg, data, table):
+        with Unchanged(tmp_path, cfg, data, table), pytest.raises(phasmid.Error) as e:
+            fit.save(target)
+        assert "is the input" in one_line(e, target.name)
