@@ -215,7 +215,8 @@ def sweep(config, set=None, threads=0, out=None, resume=False, _stop_after=-1):
     the CLI checks -o) and the finished points are journalled in out + ".journal": Ctrl-C
     finishes the running points and raises KeyboardInterrupt, and a later call with
     resume=True continues. Without `out` the run is in a temporary directory and an
-    interrupted one keeps nothing."""
+    interrupted one keeps nothing. (`_stop_after`: for tests, stop as if interrupted after that
+    many new points, as the CLI's --stop-after; the call then raises phasmid.Error.)"""
     return _run_sweep("sweep()", _core.sweep, SweepResult, config, set, threads, out, resume, _stop_after)
 
 
