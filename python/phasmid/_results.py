@@ -222,24 +222,10 @@ class FileResult(Result):
         return {k[len(prefix):]: v for k, v in self.data.items() if k.startswith(prefix)}
 
     def save(self, path):
-        """Write the file as the C++ core wrote it (byte for byte), through path + ".tmp" and a
-        rename as the C++ writer does, after the CLI's check of the path (Result.save); returns
+        """Write the file as the C++ core wrote it (byte for byte), after the CLI's check of the
+        path (Result.save), through path + ".tmp" and a rename as the C++ writer does; returns
         `path`."""
-        out = _path("save()", path)
-        _core.check_output_path(out, list(self._inputs))
-        tmp = out + ".tmp"
-        try:
-            with open(tmp, "wb") as f:
-                f.write(self._bytes)
-            os.replace(tmp, out)
-        except OSError as e:
-            if os.path.lexists(tmp) and not os.path.isdir(tmp):
-                os.remove(tmp)
-            raise _core.Error("cannot write %s: %s" % (out, e.strerror or _one_line(e))) from None
-        except BaseException:
-            if os.path.lexists(tmp):
-                os.remove(tmp)
-            raise
+        _core.save_bytes(_path("save()", path), self._bytes, list(self._inputs))
         return path
 
     @property
