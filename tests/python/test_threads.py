@@ -1,7 +1,7 @@
 """The GIL is released while C++ integrates, and Ctrl-C interrupts a run (docs/python.md).
 Nothing here assumes how fast a run goes: the interrupted runs are as long as a run may be
-(1e7 ms of model time, the bound of docs/config.md "Limits": minutes of a single joint, and
-the signal comes milliseconds after the start) and are interrupted once there is a sign that they are inside
+(1e7 ms of model time, the bound of docs/config.md "Limits": of the order of 100 s of computing
+for a single joint, while the signal comes milliseconds after the start) and are interrupted once there is a sign that they are inside
 C++ (phasmid's SIGINT handler installed, conftest.sigint_c_handler)."""
 import faulthandler
 import os
