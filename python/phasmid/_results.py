@@ -69,8 +69,8 @@ def _path(what, path, key="path"):
     if not isinstance(path, (str, os.PathLike)):
         raise _core.Error("%s: '%s' must be a path (str or os.PathLike), got %s" % (what, key, _shown(path)))
     path = os.fspath(path)
-    if not isinstance(path, str):
-        raise _core.Error("%s: '%s' must be a str path, got %s" % (what, key, _shown(path)))
+    if not isinstance(path, str) or not path or "\0" in path:
+        raise _core.Error("%s: '%s' must be a non-empty str path without NUL, got %s" % (what, key, _shown(path)))
     return path
 
 

@@ -443,11 +443,12 @@ def test_with_parameters_of_a_wrong_type_names_it(fti):
     one_line(e, "with_parameters()")
 
 
-@pytest.mark.parametrize("path", [None, 3, b"c.toml"])
-def test_load_of_a_path_of_a_wrong_type(path):
-    with pytest.raises(phasmid.Error) as e:
-        phasmid.load(path)
-    one_line(e, "path")
+@pytest.mark.parametrize("path", [None, 3, b"c.toml", "", "c\0.toml"])
+def test_load_read_and_save_of_a_path_of_a_wrong_type(isl, tmp_path, path):
+    for call in (phasmid.load, phasmid.read, isl.sweep.save, isl.sweep.report):
+        with Unchanged(tmp_path), pytest.raises(phasmid.Error) as e:
+            call(path)
+        one_line(e, "path")
 
 
 def test_an_unfinished_gsa_into_out_resumes_to_the_same_indices(isl, tmp_path):
