@@ -84,7 +84,7 @@ def loop(n=100, t_end_ms=100.0):
 
     def python():
         for _ in range(n):
-            s.simulate(t_end_ms=t_end_ms).features  # as the C++ loop reads them
+            s.simulate(t_end_ms=t_end_ms, discard_ms=0).features  # as the C++ loop reads them
 
     py = median_of(python)
     print("loop of %d runs of %g ms (%.3f ms per run in C++):" % (n, t_end_ms, 1e3 * cpp[0] / n))

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
     config::SimulationSettings s = config::simulation_settings(cfg, scenario.get());
     if (argc > 3) s.t_end_ms = std::atof(argv[3]);
     else s.t_end_ms = 100.0;
+    s.discard_ms = 0;  // as the Python loop must pass it: the config's 2000 ms is beyond the run
     const std::vector<double> p = scenario->parameters().values();
     size_t checksum = 0;
     const std::clock_t c0 = std::clock();

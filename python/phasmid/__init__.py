@@ -3,7 +3,7 @@ sensitivity analyses of the stick-insect walking model, on the same C++ core as 
 ``phasmid`` command (docs/python.md).
 
     import phasmid
-    run = phasmid.load("configs/single_joint_fti.toml").simulate(t_end_ms=2000)
+    run = phasmid.load("configs/single_joint_fti.toml").simulate(t_end_ms=4000)
     run.angles["middle"]["fti"], run.features["period_ms"]
 
 Runs release the GIL (threads run scenarios in parallel), Ctrl-C interrupts them, errors

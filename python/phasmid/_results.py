@@ -1,6 +1,7 @@
 """Result objects of phasmid runs and files (docs/python.md)."""
+import io
 import os
-import shutil
+import stat
 import tempfile
 from collections import namedtuple
 
@@ -57,9 +58,67 @@ class Features(dict):
         self.units = {r.name: r.unit for r in records}
 
 
-def _load_h5(path):
-    """Every dataset of a phasmid HDF5 file as {"/group/name": array or str list} and every
-    attribute as {"/group": {name: value}}."""
+def _shown(value):
+    """A value as a message shows it: its repr, cut short (10**400 has 401 digits)."""
+    r = repr(value)
+    return r if len(r) <= 40 else r[:37] + "..."
+
+
+def _path(what, path, key="path"):
+    """A str or os.PathLike as a str path; anything else is a phasmid.Error naming `key`."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise _core.Error("%s: '%s' must be a path (str or os.PathLike), got %s" % (what, key, _shown(path)))
+    path = os.fspath(path)
+    if not isinstance(path, str) or not path or "\0" in path:
+        raise _core.Error("%s: '%s' must be a non-empty str path without NUL, got %s" % (what, key, _shown(path)))
+    return path
+
+
+_KINDS = ((stat.S_ISDIR, "a directory"), (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+          (stat.S_ISFIFO, "a fifo"), (stat.S_ISSOCK, "a socket"))
+
+
+def _read_bytes(path):
+    """The bytes of a regular file, read in one bounded step (its size when opened): a
+    directory, a device (/dev/zero never ends) or a fifo (never begins) is refused before
+    anything is read, as the C++ readers refuse them (io::read_text_file)."""
+    def refuse(reason):
+        raise _core.Error("%s: cannot read: %s" % (path, reason))
+
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)  # a fifo must not block the open
+    except OSError as e:
+        refuse(e.strerror)
+    try:
+        st = os.fstat(fd)
+        if not stat.S_ISREG(st.st_mode):
+            refuse("it is %s; phasmid reads only regular files"
+                   % next((name for test, name in _KINDS if test(st.st_mode)), "not a regular file"))
+        chunks, left = [], st.st_size
+        while left > 0:
+            chunk = os.read(fd, min(left, 1 << 24))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            left -= len(chunk)
+    except OSError as e:
+        refuse(e.strerror)
+    finally:
+        os.close(fd)
+    if left:
+        refuse("it shrank while being read")
+    return b"".join(chunks)
+
+
+def _one_line(e):
+    text = " ".join(str(e).split())
+    return text[:200] if text else type(e).__name__
+
+
+def _load_h5(path, content):
+    """Every dataset of a phasmid HDF5 file (its bytes `content`, read from `path`) as
+    {"/group/name": array or str list} and every attribute as {"/group": {name: value}}; a file
+    HDF5 cannot read is a phasmid.Error naming `path`."""
     import h5py
 
     data, attrs = {}, {}
@@ -73,7 +132,7 @@ def _load_h5(path):
 
     # A dataset may declare any extent in a few bytes: the limit of the C++ readers
     # (H5Reader::check_extent, docs/reliability.md) before anything is allocated for it.
-    limit = max(64 * 1024 * 1024, 1000 * os.path.getsize(path))
+    limit = max(64 * 1024 * 1024, 1000 * len(content))
 
     def visit(name, obj):
         key = "/" + name
@@ -82,12 +141,18 @@ def _load_h5(path):
         if isinstance(obj, h5py.Dataset):
             if obj.size * 8 > limit:
                 raise _core.Error("%s: dataset %s declares %d values, more than a %d-byte file holds"
-                                 % (path, key, obj.size, os.path.getsize(path)))
+                                 % (path, key, obj.size, len(content)))
             data[key] = convert(obj[()])
 
-    with h5py.File(path, "r") as f:
-        attrs["/"] = {k: convert(v) for k, v in f.attrs.items()}
-        f.visititems(visit)
+    # From the bytes already read: the path is opened once, by _read_bytes.
+    try:
+        with h5py.File(io.BytesIO(content), "r") as f:
+            attrs["/"] = {k: convert(v) for k, v in f.attrs.items()}
+            f.visititems(visit)
+    except _core.Error:
+        raise
+    except Exception as e:  # h5py's OSError, RuntimeError ("Object visitation failed"), ...
+        raise _core.Error("%s: not a readable HDF5 file (%s)" % (path, _one_line(e))) from None
     return data, attrs
 
 
@@ -110,22 +175,28 @@ class Result:
 
     _made = None  # the C++ result of a run made here (it writes its own file)
     _file = None  # the FileResult of a file read back
+    _inputs = ()  # the files the result came from (config, data, the file read): never overwritten
 
     def save(self, path):
         """Write the result as the phasmid HDF5 file (docs/hdf5.md) the CLI writes for the same
-        run, through the same C++ writer; returns `path`."""
+        run, through the same C++ writer; returns `path`. The path is checked as the CLI checks
+        -o (io::check_output_path): not the config or data the result came from, not a
+        directory, device, fifo or a symlink to one; a refused save writes nothing."""
         if self._made is not None:
-            self._made.save(os.fspath(path))
+            self._made.save(_path("save()", path))
         else:
             self._file.save(path)
         return path
 
     def report(self, path):
-        """Write the self-contained HTML report of this result to `path`; returns `path`."""
+        """Write the self-contained HTML report of this result to `path` (checked as save()
+        checks its path); returns `path`."""
+        out = _path("report()", path)
+        _core.check_output_path(out, list(self._inputs))
         with tempfile.TemporaryDirectory(prefix="phasmid-") as d:
             h5 = os.path.join(d, "result.h5")
             self.save(h5)
-            _core.write_report(h5, os.fspath(path))
+            _core.write_report(h5, out)
         return path
 
 
@@ -136,11 +207,14 @@ class FileResult(Result):
     ``attrs`` maps object paths ("/", "/trajectory") to their attributes; ``model`` is the root
     attribute `model` where the file has one, ``config`` the resolved config text."""
 
-    def __init__(self, path):
-        path = os.fspath(path)
-        with open(path, "rb") as f:
-            self._bytes = f.read()
-        self.data, self.attrs = _load_h5(path)
+    def __init__(self, path, inputs=None, file=None):
+        if file is not None:  # the same file, read once (read())
+            self._bytes, self._inputs, self.data, self.attrs = file._bytes, file._inputs, file.data, file.attrs
+            return
+        path = _path("read()", path)
+        self._bytes = _read_bytes(path)
+        self._inputs = [path] if inputs is None else list(inputs)
+        self.data, self.attrs = _load_h5(path, self._bytes)
 
     def group(self, prefix):
         """{name below prefix: array} for every dataset under `prefix` ("/features")."""
@@ -148,9 +222,10 @@ class FileResult(Result):
         return {k[len(prefix):]: v for k, v in self.data.items() if k.startswith(prefix)}
 
     def save(self, path):
-        """Write the file as the C++ core wrote it (byte for byte); returns `path`."""
-        with open(path, "wb") as f:
-            f.write(self._bytes)
+        """Write the file as the C++ core wrote it (byte for byte), after the CLI's check of the
+        path (Result.save), through path + ".tmp" and a rename as the C++ writer does; returns
+        `path`."""
+        _core.save_bytes(_path("save()", path), self._bytes, list(self._inputs))
         return path
 
     @property
@@ -184,9 +259,10 @@ class SimulationResult(Result):
     they are read-only views of the C++ result (``y`` is the whole times x states matrix).
     ``features`` is a Features dict, ``events`` a list of Event records."""
 
-    def __init__(self, sim=None, file=None, attrs=None):
+    def __init__(self, sim=None, file=None, attrs=None, inputs=()):
         self._made, self._file = sim, file
         self.attrs = attrs or {}
+        self._inputs = list(inputs) if sim is not None else file._inputs
         if sim is not None and sim.has_solution:
             return  # attributes are made on first access (__getattr__): a loop of runs pays for what it reads
         if sim is not None:  # a kind without an ODE trajectory: what its file holds
@@ -277,9 +353,10 @@ class SensitivityResult(Result):
     axes = {"absolute": ("feature", "parameter"), "relative": ("feature", "parameter"),
             "trajectory": ("time", "state", "parameter"), "states": ("time", "state")}
 
-    def __init__(self, sens=None, file=None, attrs=None):
+    def __init__(self, sens=None, file=None, attrs=None, inputs=()):
         self._made, self._file = sens, file
         self.attrs = attrs or {}
+        self._inputs = list(inputs) if sens is not None else file._inputs
         if sens is not None:
             self.parameters = sens.parameters
             self.parameter_units = sens.parameter_units
@@ -327,8 +404,8 @@ class FitResult(FileResult):
     ``data``; ``estimates`` {name: value}, ``standard_errors`` {name: value}, ``units``,
     ``final_cost``, ``converged`` (best start), ``summary`` (the text `phasmid fit` prints)."""
 
-    def __init__(self, path, outcome=None):
-        super().__init__(path)
+    def __init__(self, path, outcome=None, inputs=None, file=None):
+        super().__init__(path, inputs, file)
         names = self.data["/fit/parameter_names"]
         self.parameter_names = names
         self.estimates = dict(zip(names, self.data["/fit/estimate"].tolist()))
@@ -352,8 +429,8 @@ class SweepResult(FileResult):
     (points x parameters), ``features`` {name: array over points}, ``status`` and
     ``gait_class`` per point, everything else of /sweep in ``data``."""
 
-    def __init__(self, path, outcome=None):
-        super().__init__(path)
+    def __init__(self, path, outcome=None, inputs=None, file=None):
+        super().__init__(path, inputs, file)
         self.parameter_names = self.data["/sweep/parameter_names"]
         self.parameter_units = self.data.get("/sweep/parameter_units", [])
         self.points = self.data["/sweep/points"].reshape(-1, len(self.parameter_names))
@@ -408,8 +485,8 @@ class GsaResult(FileResult):
     outputs, the indices and the dropped-point counts; ``summary`` the table `phasmid gsa`
     prints (for a run made here). Everything of the file is in ``data`` and ``attrs``."""
 
-    def __init__(self, path, outcome=None):
-        super().__init__(path)
+    def __init__(self, path, outcome=None, inputs=None, file=None):
+        super().__init__(path, inputs, file)
         a = self.attrs.get("/gsa", {})
         self.method = a.get("method")
         self.N = int(a["N"]) if "N" in a else None
@@ -441,17 +518,23 @@ class GsaResult(FileResult):
 def read(path):
     """Load any phasmid HDF5 file into the result object of the verb that wrote it:
     SensitivityResult (/sensitivity), FitResult (/fit), GsaResult (/gsa), SweepResult (/sweep),
-    SimulationResult (/trajectory), else a FileResult."""
+    SimulationResult (/trajectory), else a FileResult. Only a regular file is read (in one
+    bounded step); a file that is not a complete phasmid file is a phasmid.Error naming it. The
+    result's save() and report() may not overwrite `path`."""
     f = FileResult(path)
+    path = _path("read()", path)
     keys = f.data.keys()
-    if any(k.startswith("/sensitivity/") for k in keys):
-        return SensitivityResult(file=f)
-    if "/fit/parameter_names" in keys:
-        return FitResult(path)
-    if "/gsa/design/parameter_names" in keys:  # a gsa file holds its sweep too
-        return GsaResult(path)
-    if "/sweep/parameter_names" in keys:
-        return SweepResult(path)
-    if "/trajectory/time" in keys:
-        return SimulationResult(file=f)
+    try:
+        if any(k.startswith("/sensitivity/") for k in keys):
+            return SensitivityResult(file=f)
+        if "/fit/parameter_names" in keys:
+            return FitResult(path, file=f)
+        if "/gsa/design/parameter_names" in keys:  # a gsa file holds its sweep too
+            return GsaResult(path, file=f)
+        if "/sweep/parameter_names" in keys:
+            return SweepResult(path, file=f)
+        if "/trajectory/time" in keys:
+            return SimulationResult(file=f)
+    except (KeyError, ValueError, TypeError, IndexError, AttributeError) as e:
+        raise _core.Error("%s: not a complete phasmid file (%s: %s)" % (path, type(e).__name__, _one_line(e))) from None
     return f

@@ -10,6 +10,8 @@
 //    while it runs, SIGINT requests solver::request_interrupt(); the run then ends within one
 //    solver step and KeyboardInterrupt is raised.
 //  - Errors keep the C++ one-line message; errors of reading a config are ConfigError.
+//  - Every file written (save, report, out=) first passes io::check_output_path with the
+//    files the result came from (PyScenario::inputs, a fit's data files), as the CLI's verbs do.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -71,6 +73,9 @@ struct PyScenario {
   std::vector<std::string> sets;
   std::shared_ptr<scenario::Scenario> scenario;
   config::SimulationSettings settings;
+  // The files a result of this scenario comes from (its config, where it is one on disk): an
+  // output may not be one of them (io::check_output_path).
+  std::vector<std::string> inputs() const { return {cfg.path}; }
 };
 std::shared_ptr<PyScenario> make_scenario(config::Config cfg, std::vector<std::string> sets);
 

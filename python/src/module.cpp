@@ -1,10 +1,15 @@
 // phasmid._core: the C++ half of the phasmid Python module (bindings.hpp, docs/python.md).
+#include <fcntl.h>
 #include <signal.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <mutex>
 
 #include "bindings.hpp"
 #include "build_info.hpp"
+#include "io/output_path.hpp"
 #include "report/report.hpp"
 #include "solver/interrupt.hpp"
 
@@ -66,6 +71,33 @@ std::shared_ptr<PyScenario> make_scenario(config::Config cfg, std::vector<std::s
 }
 
 namespace {
+
+// FileResult.save: the bytes of a file the C++ core wrote, written as io::H5Writer writes (after
+// the output-path check with the result's inputs, into "<out>.tmp", renamed onto `out` when
+// complete, the .tmp removed on failure). One place for every byte-copy save from Python.
+void save_bytes(const std::string& out, const std::string& content, const std::vector<std::string>& inputs) {
+  io::check_output_path(out, inputs);
+  const std::string tmp = out + ".tmp";
+  auto fail = [&](const std::string& what) {
+    const std::string reason = std::strerror(errno);
+    ::unlink(tmp.c_str());
+    throw Error("cannot " + what + " " + tmp + ": " + reason);
+  };
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw Error("cannot create " + tmp + ": " + std::strerror(errno));
+  for (size_t done = 0; done < content.size();) {
+    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      ::close(fd);
+      fail("write");
+    }
+    done += static_cast<size_t>(n);
+  }
+  if (::close(fd) != 0) fail("write");
+  if (::rename(tmp.c_str(), out.c_str()) != 0) fail("rename");
+}
+
 void bind_errors(py::module_& m) {
   static py::exception<Error> error(m, "Error");
   static py::exception<ConfigError> config_error(m, "ConfigError", error.ptr());
@@ -97,6 +129,11 @@ PYBIND11_MODULE(_core, m) {
   bind_scenario(m);
   bind_sensitivity(m);
   bind_analyses(m);
+  m.def("save_bytes", [](const std::string& out, const py::bytes& content, const std::vector<std::string>& inputs) {
+    std::string bytes = content;  // copied with the GIL held; written without it
+    py::gil_scoped_release release;
+    save_bytes(out, bytes, inputs);
+  }, py::arg("out"), py::arg("content"), py::arg("inputs"), "Write a file's bytes as the C++ writers write an output.");
   m.def("write_report", [](const std::string& h5, const std::string& html) {
     phasmid::report::write_report(h5, html);
   }, py::arg("h5_path"), py::arg("html_path"), "Write the HTML report of a phasmid HDF5 file (phasmid report).");

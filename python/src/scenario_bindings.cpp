@@ -1,11 +1,15 @@
 // phasmid._core.Scenario and phasmid._core.Simulation (docs/python.md).
+#include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 
 #include "app/write_output.hpp"
 #include "bindings.hpp"
 #include "common/units.hpp"
+#include "config/simulation_table.hpp"
 #include "io/h5_file.hpp"
+#include "io/output_path.hpp"
 #include "model/ode_model.hpp"
 
 namespace phasmid::python {
@@ -39,6 +43,7 @@ struct Simulation {
     }
   }
   void save(const std::string& path) const {
+    io::check_output_path(path, scenario->inputs());
     io::H5Writer w(path);
     app::write_run_file(w, scenario->cfg, scenario->sets, *scenario->scenario);
     run->write(w);
@@ -48,22 +53,29 @@ struct Simulation {
 
 using Options = std::map<std::string, double>;
 
-// [simulation] settings with the keyword overrides of simulate().
+// [simulation] settings with the keyword overrides of simulate(): max_steps is the module's
+// own; the others go through the config's [simulation] checks (config::apply_simulation_table),
+// with errors naming "simulate()" and the keyword.
 scenario::RunSettings settings_with(const PyScenario& s, const Options& o) {
-  scenario::RunSettings r = s.settings;
+  static const std::set<std::string> keys = {"t_end_ms", "output_dt_ms", "discard_ms", "rtol", "atol", "max_step_ms"};
+  toml::table table;
+  std::optional<double> max_steps;
   for (const auto& [key, value] : o) {
-    if (key == "t_end_ms") r.t_end_ms = value;
-    else if (key == "output_dt_ms") r.output_dt_ms = value;
-    else if (key == "discard_ms") r.discard_ms = value;
-    else if (key == "rtol") r.solver.rtol = value;
-    else if (key == "atol") r.solver.atol = value;
-    else if (key == "max_step_ms") r.solver.max_step_ms = value;
-    else if (key == "max_steps") r.solver.max_steps = static_cast<long>(value);
+    if (key == "max_steps") max_steps = value;
+    else if (keys.count(key)) table.insert_or_assign(key, value);
     else
       throw ConfigError("simulate: unknown option '" + key +
                         "' (t_end_ms, output_dt_ms, discard_ms, rtol, atol, max_step_ms, max_steps)");
   }
-  if (!(r.t_end_ms > 0) || !(r.output_dt_ms > 0)) throw ConfigError("simulate: t_end_ms and output_dt_ms must be > 0");
+  config::Config origin;
+  origin.path = "simulate()";
+  scenario::RunSettings r = s.settings;
+  if (!table.empty()) r = config_stage([&] { return config::apply_simulation_table(origin, table, s.scenario.get(), r); });
+  if (max_steps) {
+    if (!(*max_steps >= 1 && *max_steps <= 1e9) || *max_steps != std::floor(*max_steps))
+      throw ConfigError("simulate(): 'max_steps' must be an integer in [1, 1e9] (solver steps per output interval)");
+    r.solver.max_steps = static_cast<long>(*max_steps);
+  }
   return r;
 }
 
@@ -106,6 +118,7 @@ void bind_scenario_class(py::module_& m) {
       })
       .def_property_readonly("kind", [](const PyScenario& s) { return s.scenario->kind(); })
       .def_property_readonly("path", [](const PyScenario& s) { return s.cfg.path; })
+      .def_property_readonly("inputs", [](const PyScenario& s) { return s.inputs(); })
       .def_property_readonly("sets", [](const PyScenario& s) { return s.sets; })
       .def_property_readonly("config_text", [](const PyScenario& s) { return config::resolved_config_text(s.cfg, s.sets); })
       .def_property_readonly("is_ode", [](const PyScenario& s) { return s.scenario->ode_model() != nullptr; })

@@ -5,6 +5,7 @@
 
 #include "bindings.hpp"
 #include "config/sensitivity_section.hpp"
+#include "io/output_path.hpp"
 #include "sensitivity/job.hpp"
 
 namespace phasmid::python {
@@ -17,6 +18,7 @@ struct Sensitivity {
   sensitivity::SensitivityOutcome outcome;
 
   void save(const std::string& path) const {
+    io::check_output_path(path, scenario->inputs());
     const model::OdeModel& m = *scenario->scenario->ode_model();
     sensitivity::write_sensitivity_file(path, m, p, job, outcome,
                                         {config::resolved_config_text(scenario->cfg, scenario->sets), command_text()});
@@ -31,7 +33,8 @@ struct SensitivityRequest {
 };
 
 // The config's [sensitivity] job (or, without the section, the [simulation] run) with the
-// keyword overrides of Scenario.sensitivity().
+// keyword overrides of Scenario.sensitivity(), which go through the section's own parser
+// (config::parse_sensitivity_section) as a table whose errors name "sensitivity()".
 sensitivity::SensitivityJob make_job(const PyScenario& s, const model::OdeModel& m, const SensitivityRequest& r) {
   return config_stage([&] {
     sensitivity::SensitivityJob job;
@@ -43,16 +46,18 @@ sensitivity::SensitivityJob make_job(const PyScenario& s, const model::OdeModel&
       job.options.discard_ms = s.settings.discard_ms;
       job.options.solver = s.settings.solver;
     }
+    toml::table t;
     if (r.parameters) {
-      for (const std::string& name : *r.parameters) m.parameters().index(name);  // names the unknown one
-      job.options.parameters = *r.parameters;
+      toml::array names;
+      for (const std::string& name : *r.parameters) names.push_back(name);
+      t.insert("parameters", std::move(names));
     }
-    if (r.method) job.options.method = sensitivity::parse_method(*r.method);
-    if (r.t_end_ms) job.options.t_end_ms = *r.t_end_ms;
-    if (r.output_dt_ms) job.options.output_dt_ms = *r.output_dt_ms;
-    if (r.discard_ms) job.options.discard_ms = *r.discard_ms;
-    if (r.trajectory) job.options.write_trajectory = *r.trajectory;
-    return job;
+    if (r.method) t.insert("method", *r.method);
+    if (r.t_end_ms) t.insert("t_end_ms", *r.t_end_ms);
+    if (r.output_dt_ms) t.insert("output_dt_ms", *r.output_dt_ms);
+    if (r.discard_ms) t.insert("discard_ms", *r.discard_ms);
+    if (r.trajectory) t.insert("trajectory", *r.trajectory);
+    return config::parse_sensitivity_section(t, m, "sensitivity()", job);
   });
 }
 

@@ -26,6 +26,12 @@ struct FitArgs {
   bool quiet = false, json = false;
 };
 
+// An integer option whose absence is not a value (FitOverrides' optionals); its range is
+// checked by fit::check_overrides, not here, so that Python's fit() gets the same message.
+void add_long(CLI::App& sub, const std::string& name, std::optional<long>& out, const std::string& help) {
+  sub.add_option_function<long>(name, [&out](const long& v) { out = v; }, help);
+}
+
 // The estimates on stdout: name, value, standard error (null where undefined), unit.
 void print_estimates_json(const fit::ResidualProblem& problem, const fit::FitResult& r) {
   auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
@@ -43,6 +49,7 @@ void print_estimates_json(const fit::ResidualProblem& problem, const fit::FitRes
 // The same for every model kind: the kind makes the residual problem of [fit]; optimise,
 // write /fit, print the summary.
 int run_fit_verb(const FitArgs& a) {
+  fit::check_overrides(a.ov);  // before any file is touched; the Python module's fit() calls it too
   io::check_output_path(a.out, {a.config, a.ov.data, a.ov.parameters});
   config::Config cfg = config::load_config(a.config);
   auto scenario = config::build_scenario(cfg, a.sets);
@@ -83,10 +90,10 @@ const RegisterVerb reg{{"fit", "Fit parameters to feature targets, switch condit
                           sub.add_option("--data-format", a->ov.data_format, "csv (default) or anipose");
                           sub.add_option("--parameters", a->ov.parameters, "PEtab parameter table (TSV)");
                           sub.add_option("--optimizer", a->ov.optimizer, fit::optimizer_help());
-                          sub.add_option("--multistart", a->ov.multistart, "number of starts (nominal + Latin hypercube / Sobol)");
-                          sub.add_option("--seed", a->ov.seed, "seed of the start sampling");
+                          add_long(sub, "--multistart", a->ov.multistart, "number of starts (nominal + Latin hypercube / Sobol)");
+                          add_long(sub, "--seed", a->ov.seed, "seed of the start sampling");
                           sub.add_option("--target-set", a->ov.target_set, "which set of [[fit.feature]]/[[fit.switch]] targets");
-                          sub.add_option("--max-iterations", a->ov.max_iterations, "Ceres iteration limit");
+                          add_long(sub, "--max-iterations", a->ov.max_iterations, "Ceres iteration limit");
                           sub.add_option("--profile", a->profile, "profile likelihood of this estimated parameter (repeatable)");
                           add_output(sub, a->out, "fit.h5");
                           add_sets(sub, a->sets);

@@ -1,6 +1,7 @@
 #include "config/config.hpp"
 
 #include "common/error.hpp"
+#include "config/simulation_table.hpp"
 #include "config/triggers.hpp"
 #include "model/ode_model.hpp"
 #include "scenario/ode_scenario.hpp"
@@ -88,6 +89,12 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
   SimulationSettings s = scenario ? scenario->default_settings() : SimulationSettings{};
   const toml::table* st = cfg.table["simulation"].as_table();
   if (!st) return s;
+  return apply_simulation_table(cfg, *st, scenario, s);
+}
+
+SimulationSettings apply_simulation_table(const Config& cfg, const toml::table& table, const scenario::Scenario* scenario,
+                                          SimulationSettings s) {
+  const toml::table* st = &table;
   if (scenario && !scenario->takes_simulation_settings())
     throw Error(where(cfg, *st) + ": [simulation] does not apply to model type " + scenario->kind() +
                 " (its own parameters set the run; docs/config.md)");
@@ -97,7 +104,7 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
   auto get = [&](const char* key, double& out, double lo) {
     if (const toml::node* n = st->get(key)) {
       out = number(cfg, *n, key);
-      if (!(out > lo)) throw Error(where(cfg, *n) + ": '" + key + "' must be > " + std::to_string(lo));
+      if (!(out > lo)) throw Error(where(cfg, *n) + ": '" + key + "' must be > " + (lo == 0 ? "0" : std::to_string(lo)));
     }
   };
   get("t_end_ms", s.t_end_ms, 0);
@@ -107,7 +114,7 @@ SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenar
   get("rtol", s.solver.rtol, 0);
   get("atol", s.solver.atol, 0);
   get("stiff_part_tol", s.solver.stiff_part_tol, 0);
-  if (s.solver.rtol >= 1) throw Error(where(cfg, *st->get("rtol")) + ": 'rtol' must be < 1");
+  if (const toml::node* n = st->get("rtol"); n && s.solver.rtol >= 1) throw Error(where(cfg, *n) + ": 'rtol' must be < 1");
   get("max_step_ms", s.solver.max_step_ms, 0);
   if (const toml::node* n = st->get("linear_solver")) {
     std::string v = n->value<std::string>().value_or("");

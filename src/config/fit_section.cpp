@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -141,8 +142,22 @@ const toml::table& fit_section(const config::Config& cfg) {
   return fp ? *fp : kEmpty;
 }
 
+void check_overrides(const FitOverrides& ov) {
+  auto at_least = [](const char* option, const std::optional<long>& v, long lo) {
+    if (v && *v < lo) throw Error(std::string(option) + " " + std::to_string(*v) + ": must be an integer >= " + std::to_string(lo));
+  };
+  at_least("--multistart", ov.multistart, 1);
+  at_least("--max-iterations", ov.max_iterations, 1);
+  at_least("--seed", ov.seed, 0);
+  if (ov.max_iterations && *ov.max_iterations > std::numeric_limits<int>::max())
+    throw Error("--max-iterations " + std::to_string(*ov.max_iterations) + ": must be at most " +
+                std::to_string(std::numeric_limits<int>::max()));
+  if (ov.threads < 0) throw Error("-j/--threads " + std::to_string(ov.threads) + ": must be >= 0 (0: the default)");
+}
+
 void load_fit_common(const config::Config& cfg, const toml::table& fit, const FitOverrides& ov,
                      const std::vector<std::string>& target_keys, const ModelValue& model_value, FitSpec& spec) {
+  check_overrides(ov);
   // Optimizer and multistart.
   auto get = [&](const char* k) { return fit.get(k); };
   try {
@@ -153,7 +168,7 @@ void load_fit_common(const config::Config& cfg, const toml::table& fit, const Fi
     throw Error(where(cfg, *get("optimizer")) + ": " + e.what());
   }
   if (auto n = get("max_iterations")) spec.optimizer.max_iterations = static_cast<int>(integer(cfg, *n, "max_iterations", 1));
-  if (ov.max_iterations > 0) spec.optimizer.max_iterations = static_cast<int>(ov.max_iterations);
+  if (ov.max_iterations) spec.optimizer.max_iterations = static_cast<int>(*ov.max_iterations);
   if (auto n = get("max_evaluations")) spec.optimizer.max_evaluations = static_cast<int>(integer(cfg, *n, "max_evaluations", 1));
   if (auto n = get("function_tolerance")) spec.optimizer.function_tolerance = number(cfg, *n, "function_tolerance");
   if (auto n = get("parameter_tolerance")) spec.optimizer.parameter_tolerance = number(cfg, *n, "parameter_tolerance");
@@ -173,10 +188,7 @@ void load_fit_common(const config::Config& cfg, const toml::table& fit, const Fi
                   optimizer_list([](const OptimizerInfo& a) { return a.robust_loss; }) + ", not " + spec.optimizer.method);
   }
   if (auto n = get("multistart")) spec.multistart.starts = static_cast<size_t>(integer(cfg, *n, "multistart", 1));
-  if (ov.multistart >= 0) {
-    if (ov.multistart < 1) throw Error("--multistart must be >= 1");
-    spec.multistart.starts = static_cast<size_t>(ov.multistart);
-  }
+  if (ov.multistart) spec.multistart.starts = static_cast<size_t>(*ov.multistart);
   if (auto n = get("sampling")) {
     try {
       spec.multistart.sampling = parse_sampling(text(cfg, *n, "sampling"));
@@ -185,7 +197,7 @@ void load_fit_common(const config::Config& cfg, const toml::table& fit, const Fi
     }
   }
   if (auto n = get("seed")) spec.multistart.seed = static_cast<std::uint64_t>(integer(cfg, *n, "seed", 0));
-  if (ov.seed >= 0) spec.multistart.seed = static_cast<std::uint64_t>(ov.seed);
+  if (ov.seed) spec.multistart.seed = static_cast<std::uint64_t>(*ov.seed);
   if (auto n = get("threads")) spec.multistart.threads = static_cast<int>(integer(cfg, *n, "threads", 0));
   if (ov.threads > 0) spec.multistart.threads = ov.threads;
   if (auto n = get("absolute_sigma")) spec.absolute_sigma = boolean(cfg, *n, "absolute_sigma");

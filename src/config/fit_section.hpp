@@ -10,6 +10,11 @@
 
 namespace phasmid::fit {
 
+// Refuses a given override outside its range (--multistart and --max-iterations >= 1, --seed
+// >= 0, -j >= 0), naming the option: the one check of `phasmid fit`'s options and of the Python
+// module's fit() keywords (load_fit_common calls it; callers may call it earlier, before work).
+void check_overrides(const FitOverrides& overrides);
+
 // `model` must be the model built from the same config (nominal values default to its values).
 FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, const FitOverrides& overrides = {});
 

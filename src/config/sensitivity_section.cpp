@@ -36,6 +36,8 @@ SensitivityJob parse_sensitivity_section(const toml::table& section, const model
     if (key == "parameters") {
       auto* arr = node.as_array();
       if (!arr) throw Error(at + ": [sensitivity] parameters must be a list of parameter names");
+      // An empty list would silently mean every parameter (the default without the key).
+      if (arr->empty()) throw Error(at + ": [sensitivity] parameters is empty; name at least one (leave the key out for all)");
       job.options.parameters.clear();
       for (auto& e : *arr) {
         std::string name = text(e, "parameters", origin);

@@ -70,6 +70,8 @@ class OpenMPExecutor final : public Executor {
 }  // namespace
 
 int bounded_threads(int threads) {
+  // A negative count would silently mean the default: refused, as -j's own check does.
+  if (threads < 0) throw Error("-j/--threads " + std::to_string(threads) + ": must be >= 0 (0: the default)");
   const int n = threads > 0 ? threads : omp_get_max_threads();
   if (n > kMaxThreads)
     throw Error((threads > 0 ? "-j/--threads " : "OMP_NUM_THREADS ") + std::to_string(n) + ": at most " +

@@ -58,7 +58,7 @@ std::unique_ptr<Executor> make_executor(int threads);
 // More threads than this (from -j or OMP_NUM_THREADS) is an Error: OpenMP cannot start them
 // (a crash, not a message) and no machine phasmid runs on has that many cores per process.
 inline constexpr int kMaxThreads = 256;
-int bounded_threads(int threads);  // 0 -> OpenMP's default; an Error above kMaxThreads
+int bounded_threads(int threads);  // 0 -> OpenMP's default; an Error below 0 or above kMaxThreads
 
 // One line per worker: "rank 1: 8 tasks, 61.2 s busy (50 %)", with the share of all busy time.
 std::string format_work_summary(const std::vector<WorkerStats>& stats, const std::string& unit);

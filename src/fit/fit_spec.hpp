@@ -3,6 +3,7 @@
 // profiles (FitSpec), and the command-line overrides of `phasmid fit` (FitOverrides).
 // config/fit_section.hpp reads them from a config's [fit] section.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,16 +28,18 @@ struct FitSpec {
   std::vector<std::string> inputs;   // data and parameter files read
 };
 
+// Unset (nullopt / empty) means the [fit] section's value; a given value is checked by
+// fit::check_overrides (config/fit_section.hpp), which the CLI and the Python module both reach.
 struct FitOverrides {
-  std::string data;          // --data
-  std::string data_format;   // --data-format csv|anipose
-  std::string parameters;    // --parameters
-  std::string optimizer;     // --optimizer
-  long multistart = -1;      // --multistart
-  long seed = -1;            // --seed
-  std::string target_set;    // --target-set
-  long max_iterations = -1;  // --max-iterations
-  int threads = 0;           // -j (0: [fit] threads, else OpenMP's default)
+  std::string data;                         // --data
+  std::string data_format;                  // --data-format csv|anipose
+  std::string parameters;                   // --parameters
+  std::string optimizer;                    // --optimizer
+  std::optional<long> multistart;           // --multistart
+  std::optional<long> seed;                 // --seed
+  std::string target_set;                   // --target-set
+  std::optional<long> max_iterations;       // --max-iterations
+  int threads = 0;                          // -j (0: [fit] threads, else OpenMP's default)
 };
 
 }  // namespace phasmid::fit

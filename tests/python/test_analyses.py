@@ -45,14 +45,14 @@ def test_sensitivity_save_and_trajectory(sens_pair, tmp_path):
     for key in ref:
         assert_same_bits(saved[key], ref[key], key)
     s = phasmid.load(config("single_joint_fti.toml"))
-    t = s.sensitivity(parameters=["middle.fti.b_v", "middle.fti.k_F.flexion"], t_end_ms=300, trajectory=True)
+    t = s.sensitivity(parameters=["middle.fti.b_v", "middle.fti.k_F.flexion"], t_end_ms=300, discard_ms=0, trajectory=True)
     T, S = len(t.time), len(t.state_names)
     assert t.trajectory.shape == (T, S, 2) and T == 301 and t.axes["trajectory"] == ("time", "state", "parameter")
     assert t.trajectory.flags.owndata is False and np.shares_memory(t.trajectory, t.trajectory[:, 0, 0])
     # Finite-difference check of one column: d gamma / d b_v at 300 ms.
     h = 1e-4 * 12.5
-    up = s.with_parameters({"middle.fti.b_v": 12.5 + h}).simulate(t_end_ms=300, rtol=1e-10, atol=1e-10)
-    dn = s.with_parameters({"middle.fti.b_v": 12.5 - h}).simulate(t_end_ms=300, rtol=1e-10, atol=1e-10)
+    up = s.with_parameters({"middle.fti.b_v": 12.5 + h}).simulate(t_end_ms=300, discard_ms=0, rtol=1e-10, atol=1e-10)
+    dn = s.with_parameters({"middle.fti.b_v": 12.5 - h}).simulate(t_end_ms=300, discard_ms=0, rtol=1e-10, atol=1e-10)
     assert s.parameters["middle.fti.b_v"].value == 12.5
     i = t.state_names.index("middle.fti.gamma")
     fd = (up.states["middle.fti.gamma"][-1] - dn.states["middle.fti.gamma"][-1]) / (2 * h)
@@ -91,7 +91,7 @@ def test_sweep_equals_cli(tmp_path, binary):
 
 
 def test_simulation_report(tmp_path):
-    run = phasmid.load(config("single_joint_fti.toml")).simulate(t_end_ms=1000)
+    run = phasmid.load(config("single_joint_fti.toml")).simulate(t_end_ms=1000, discard_ms=0)
     run.report(tmp_path / "r.html")
     html = (tmp_path / "r.html").read_text()
     assert "<html" in html.lower() and "middle" in html

@@ -65,7 +65,7 @@ def test_unknown_options_and_parameters():
 def test_solver_failure_is_solver_error():
     # Two steps per output interval are far too few for the CPG's spikes: CVODES gives up.
     with pytest.raises(phasmid.SolverError) as e:
-        phasmid.load(config("single_joint_fti.toml")).simulate(t_end_ms=1000, max_steps=2)
+        phasmid.load(config("single_joint_fti.toml")).simulate(t_end_ms=1000, discard_ms=0, max_steps=2)
     assert "\n" not in str(e.value) and str(e.value)
 
 

@@ -90,8 +90,8 @@ def test_parameters_and_with_parameters():
 
 def test_loads_from_text_equals_load():
     text = open(config("single_joint_fti.toml")).read()
-    a = phasmid.loads(text).simulate(t_end_ms=500)
-    b = phasmid.load(config("single_joint_fti.toml")).simulate(t_end_ms=500)
+    a = phasmid.loads(text).simulate(t_end_ms=500, discard_ms=0)
+    b = phasmid.load(config("single_joint_fti.toml")).simulate(t_end_ms=500, discard_ms=0)
     assert_same_bits(a.y, b.y)
 
 
