@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # phasmid vs Brian2 on the isolated FTi joint network (configs/single_joint_fti.toml, 26
 # states) or the middle leg (configs/middle_leg_forward.toml, 78 states), 9 s of model time:
-# run time and feature accuracy, one table (docs/benchmarks.md, "phasmid vs Brian2").
+# run time and feature accuracy, one table (bench/results, "phasmid vs Brian2").
 #
 #   bash bench/bench_brian2.sh [REPEATS [MODEL]]   (default 3, single_joint_fti; or middle_leg_forward)
 #   PHASMID=path overrides build/phasmid; PHASMID_TOLS, RK4_DTS, GSL_METHODS, GSL_ERRORS, GSL_DT
@@ -12,7 +12,7 @@
 #   and mechanics at each of these tolerances, CVODES BDF on the CPG and interneurons at
 #   stiff_part_tol = NEURONS_STIFF_TOL; docs/solver.md "Integrators"); default "1e-4 1e-5", 1e-7.
 #   NEURONS_STIFF_ATOL (default "mV = 1e-4"; empty: none): each compiled NEURONS_TOLS row once
-#   more with stiff_part_atol_by_unit = { NEURONS_STIFF_ATOL } (docs/benchmarks.md "The network
+#   more with stiff_part_atol_by_unit = { NEURONS_STIFF_ATOL } (bench/results "The network
 #   part's absolute tolerance").
 #   COMPILED_RHS=1 (default): the shipped row and the NEURONS_TOLS rows once more with
 #   compiled_rhs = true (model/compiled_rhs.hpp); their first run, with an empty cache, compiles,

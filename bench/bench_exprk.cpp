@@ -1,4 +1,4 @@
-// Prototype for lever 3 of issue #21 (docs/benchmarks.md "An exponential Runge-Kutta method,
+// Prototype for lever 3 of issue #21 (bench/results "An exponential Runge-Kutta method,
 // prototyped"): how many steps would an explicit method take on a whole walking network if the
 // stiff diagonal of its Jacobian (the gates' alpha + beta, the potentials' g_tot / C) were
 // integrated exactly? Not a solver of phasmid: no dense output, no events, a plain step
@@ -17,7 +17,7 @@
 // conditions, give a third- (second-) order solution; their difference h (4 phi_2 - 8 phi_3)
 // (N_5 - N_3) is the estimate, controlled with the exponent 1/4 (1/3). One step's work per step.
 // BENCH_L_UNITS="mV" (comma-separated units) keeps only those states' diagonal in L: "mV", the
-// membrane potentials alone, is the setting whose error follows the tolerance (docs/benchmarks.md).
+// membrane potentials alone, is the setting whose error follows the tolerance (bench/results).
 #include <sundials/sundials_context.h>
 
 #include <algorithm>

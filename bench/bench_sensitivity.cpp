@@ -105,7 +105,7 @@ std::vector<Variant> variants() {
     change(x);
     v.push_back({label, x});
   };
-  add("old", [](auto& x) {  // the defaults before this benchmark's measurements (docs/benchmarks.md)
+  add("old", [](auto& x) {  // the defaults before this benchmark's measurements (bench/results)
     x.sensitivity_rhs = solver::SensitivityRhs::PerParameter;
     x.linear_solver = solver::LinearSolverKind::Dense;
     x.sensitivities_at_outputs = true;

@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
                          : std::string(integ) == "neurons" ? solver::Partitioning::Neurons
                                                            : solver::Partitioning::Off;
       solver::Simulator sim(*m, sok);
-      // Best of `repeats` runs: single timings on this VM scatter by up to 1.7x (docs/benchmarks.md).
+      // Best of `repeats` runs: single timings on this VM scatter by up to 1.7x (bench/results).
       double wall = 1e300, cpu = 1e300;
       solver::SolveResult r;
       for (int rep = 0; rep < repeats; ++rep) {

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Method study (issue #21, docs/benchmarks.md "Method study"): for each model, every
+# Method study (issue #21, bench/results "Method study"): for each model, every
 # integrator over a ladder of tolerances, features against a tight-tolerance reference
 # (CVODES BDF, rtol = atol = 1e-10, one system), and the cheapest setting whose features all
 # meet the accuracy (every feature in ms within 0.01 ms, every one in deg within 0.01 deg).

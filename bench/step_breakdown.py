@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Per-step cost breakdown from a `perf record` profile (issue #21, docs/benchmarks.md
+"""Per-step cost breakdown from a `perf record` profile (issue #21, bench/results
 "Cost of a step"): self time of every symbol, summed into the parts of an integrator step.
 
     perf record -F 5000 -o P.data build/bench/bench_walking 3000 joint auto spiking 1e-6

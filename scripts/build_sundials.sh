@@ -4,7 +4,7 @@
 #
 # Why: Debian 12's binary packages are compiled without optimisation. debian/rules passes
 # -DCMAKE_C_FLAGS=-fcommon, which replaces the -O2 of dpkg-buildflags, so CVODES' and
-# ARKODE's step, error-test, Newton and interpolation code runs as -O0 code (docs/benchmarks.md
+# ARKODE's step, error-test, Newton and interpolation code runs as -O0 code (bench/results
 # "SUNDIALS built with optimisation"). The same source at -O2 (no -march, no fast-math:
 # the same IEEE operations in the same order) gives bit-identical trajectories.
 #

@@ -118,7 +118,7 @@ struct NetworkComponents {
 // The neurons' parameters of some components gathered once (NetworkModel::bind_neurons), by
 // position in NetworkComponents::neurons: a double evaluation given them reads them in place
 // instead of gathering each neuron's 14 or 32 values by index on every call (an eighth of a
-// spiking three-leg run: docs/benchmarks.md "Parameters bound per run"). They hold for one
+// spiking three-leg run: bench/results "Parameters bound per run"). They hold for one
 // parameter vector; whoever changes its values binds again.
 struct BoundNeuronParams {
   std::vector<NapNeuronParams<double>> nap;
@@ -189,7 +189,7 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   ModelPartition partition(PartitionGrain grain) const override;
   // Rate motoneurons only: the joints' own step sizes keep feature accuracy and save time. With
   // spiking ones they lose accuracy in spike-driven features at the same rtol, and the tighter
-  // rtol that restores it costs the time saved (figures: docs/benchmarks.md "Partitioned
+  // rtol that restores it costs the time saved (figures: bench/results "Partitioned
   // integration").
   bool partition_by_default() const override { return rate_mn_; }
   std::unique_ptr<OdeModelPart> make_part(const ModelPartition& partition, size_t k) const override;

@@ -7,7 +7,7 @@
 // The Newton matrix I - gamma df_I/dy is taken as its diagonal 1 + gamma kappa, so a linear
 // solve is one multiplication per state (a matrix-embedded SUNLinearSolver); kappa is taken at
 // every stage's predicted state. Kennedy-Carpenter ARK4(3)6L[2]SA or ARK5(4)8L[2]SA tables.
-// Measured slower than Dormand-Prince on the networks at matched accuracy (docs/benchmarks.md
+// Measured slower than Dormand-Prince on the networks at matched accuracy (bench/results
 // "IMEX against Dormand-Prince"), so no [simulation] integrator selects it; bench/bench_imex.cpp.
 //
 // Contract: as ErkSession (destructor releases everything, set-up failures throw SolverError
@@ -29,7 +29,7 @@ using StiffRates = std::function<void(double t, const double* y, double* kappa)>
 struct ImexOptions {
   int order = 4;  // 4 or 5: the Kennedy-Carpenter pair of that order
   // One Newton iteration per stage without a convergence test (ARKStepSetLinear): exact only
-  // for a kappa that does not depend on y; measured to lose accuracy here (docs/benchmarks.md).
+  // for a kappa that does not depend on y; measured to lose accuracy here (bench/results).
   bool linearly_implicit = false;
 };
 

@@ -5,7 +5,7 @@
 // Why a stepper of our own: on the walking networks' parts (14-26 states) ARKODE's per-step
 // work outside the right-hand side (vector kernels called one combination at a time through
 // N_Vector operations, the step and stop-time logic) is a quarter of a Dormand-Prince run
-// (docs/benchmarks.md "The cost of a step"). Here each stage is one fused loop over the
+// (bench/results "The cost of a step"). Here each stage is one fused loop over the
 // states, and the step, its error norm and the dense output read the same few arrays.
 //
 // The method is ARKODE's: the same Butcher table (first same as last: six right-hand sides

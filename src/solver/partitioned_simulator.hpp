@@ -31,7 +31,7 @@
 // scheduler above.
 //
 // Not for forward sensitivities (Simulator::run then integrates the whole model as one
-// system); SolverOptions::partitioning chooses; docs/benchmarks.md compares the two.
+// system); SolverOptions::partitioning chooses; bench/results compares the two.
 #include <vector>
 
 #include "model/ode_model.hpp"

@@ -14,12 +14,12 @@ namespace phasmid::solver {
 class OutputSink;  // solver/output_sink.hpp
 
 // Auto: dense up to kDenseMaxStates states, KLU (sparse) above, where the sparse factorisation
-// is the faster at equal step counts (measured in docs/benchmarks.md).
+// is the faster at equal step counts (measured in bench/results).
 enum class LinearSolverKind { Auto, Dense, Band, Klu };
 constexpr size_t kDenseMaxStates = 40;
 // With forward sensitivities every corrector iteration solves one linear system per parameter,
 // so the dense back-substitutions weigh more and KLU pays off at fewer states
-// (docs/benchmarks.md, "Linear solver and Jacobian").
+// (bench/results, "Linear solver and Jacobian").
 constexpr size_t kDenseMaxStatesWithSensitivities = 16;
 enum class JacobianKind { AutoDiff, FiniteDifference };
 enum class SensitivityMethod { Staggered, Simultaneous };
@@ -31,7 +31,7 @@ enum class SensitivityRhs { Batched, PerParameter };
 // (Bogacki-Shampine 3(2), Dormand-Prince 5(4), Verner 6(5), Fehlberg 8(7)): no Jacobian, no
 // linear solves, a few right-hand sides per step; Dopri5 is Dormand-Prince 5(4) in phasmid's
 // own stepper (solver/dopri_session.hpp), ARKODE's method with less work per step. Chosen by
-// measurement per model (docs/benchmarks.md, "Method study"); sensitivities always run on
+// measurement per model (bench/results, "Method study"); sensitivities always run on
 // CVODES BDF.
 enum class IntegratorKind { Bdf, Adams, ErkBs3, ErkDp5, ErkVerner65, ErkFehlberg78, Dopri5 };
 inline bool is_explicit_rk(IntegratorKind k) { return k != IntegratorKind::Bdf && k != IntegratorKind::Adams; }
@@ -52,7 +52,7 @@ struct SolverOptions {
   LinearSolverKind linear_solver = LinearSolverKind::Auto;
   JacobianKind jacobian = JacobianKind::AutoDiff;
   // Simultaneous: at the same cost as staggered, more accurate feature sensitivities on the
-  // networks (docs/benchmarks.md, "After the compiled kernels"); `staggered = true` in
+  // networks (bench/results, "After the compiled kernels"); `staggered = true` in
   // [sensitivity] selects the other.
   SensitivityMethod sensitivity_method = SensitivityMethod::Simultaneous;
   SensitivityRhs sensitivity_rhs = SensitivityRhs::Batched;
@@ -68,19 +68,19 @@ struct SolverOptions {
   bool sensitivities_at_outputs = true;
   // Vector and matrix arithmetic and the dense LU: phasmid's compiled kernels
   // (solver/serial_kernels.hpp, solver/matrix_kernels.hpp; Debian's libsundials is built
-  // without optimisation) or the library's own (docs/benchmarks.md).
+  // without optimisation) or the library's own (bench/results).
   VectorKernels vector_kernels = VectorKernels::Phasmid;
   int max_order = 0;                      // BDF/Adams order limit (0: CVODES default, 5 / 12)
   bool stability_limit_detection = false; // CVodeSetStabLimDet (BDF orders >= 3)
   // Plain runs (no sensitivities) of a model with several parts (joints): one integrator per
   // part, each on its own step size (solver/partitioned_simulator.hpp). Auto: where the model
   // says it pays at equal accuracy (OdeModel::partition_by_default: the rate-MN walking models;
-  // docs/benchmarks.md "Partitioned integration").
+  // bench/results "Partitioned integration").
   Partitioning partitioning = Partitioning::Auto;
   // Partitioning::Neurons with an explicit integrator: the parts the model marks stiff
   // (ModelPartition::stiff) run CVODES BDF at rtol = atol = stiff_part_tol; the rest run the
   // explicit method at rtol, atol. 1e-7: the study's loosest that keeps the single joint's
-  // period within 0.002 ms of the reference (docs/benchmarks.md "Spiking cells apart").
+  // period within 0.002 ms of the reference (bench/results "Spiking cells apart").
   double stiff_part_tol = 1e-7;
   // Plain runs: each part's double right-hand side compiled for it at the run's start
   // (OdeModelPart::compile, model/compiled_rhs.hpp; cached, so once per model per machine),
@@ -98,9 +98,9 @@ struct SolverOptions {
   // The same for the stiff parts of Partitioning::Neurons (in place of stiff_part_tol as their
   // atol; their rtol stays stiff_part_tol). A 60 mV potential at atol 1e-7 is held to far more
   // digits than the features need: `mV = 1e-4` takes 8 % fewer instructions on the single
-  // joint at the same accuracy (docs/benchmarks.md "The network part's absolute tolerance").
+  // joint at the same accuracy (bench/results "The network part's absolute tolerance").
   std::vector<std::pair<std::string, double>> stiff_part_atol_by_unit;
-  double window_ms = 1.0;  // 0.25-1 ms are as accurate on the three legs; 4 ms is not (docs/benchmarks.md)
+  double window_ms = 1.0;  // 0.25-1 ms are as accurate on the three legs; 4 ms is not (bench/results)
   int window_order = 3;
   // Windowed runs without triggers: a part may complete up to this many windows ahead of the
   // slowest, while a thread would otherwise wait (0: never). Changes no number.
@@ -138,7 +138,7 @@ struct SolverStats {
   long integrators = 1;  // parts integrated separately (SolverOptions::partitioning), 1: one system
   double wall_seconds = 0.0;
   // CPU time of the process over the same span (std::clock: all its threads), the clock that
-  // Brian2's standalone runs report around their network run (docs/benchmarks.md).
+  // Brian2's standalone runs report around their network run (bench/results).
   double cpu_seconds = 0.0;
 };
 

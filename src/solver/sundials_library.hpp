@@ -3,7 +3,7 @@
 // the dynamic loader took CVODES from. scripts/setup.sh builds Debian's own SUNDIALS source
 // with optimisation into build/sundials/install, because Debian's binary package is -O0 code;
 // a build against the binary package loads it from /usr/lib instead: the same numbers, slower
-// (docs/benchmarks.md "SUNDIALS built with optimisation").
+// (bench/results "SUNDIALS built with optimisation").
 #include <string>
 
 namespace phasmid::solver {

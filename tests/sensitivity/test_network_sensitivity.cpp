@@ -42,7 +42,7 @@ TEST(NetworkSensitivity, FeatureSensitivitiesMatchCentralDifferences) {
 
 // `[sensitivity] tolerance_factor = 100` (docs/sensitivity.md): with rate motoneurons the
 // sensitivities keep 1 % accuracy at 100x looser sensitivity tolerances than the states' (the
-// measured trade-off is in docs/benchmarks.md; with spiking motoneurons it does not hold).
+// measured trade-off is in bench/results; with spiking motoneurons it does not hold).
 TEST(NetworkSensitivity, RateNetworkFeaturesStayWithinOnePercentAtLooseSensitivityTolerances) {
   auto cfg = config::load_config(std::string(PHASMID_SOURCE_DIR) + "/configs/single_joint_fti.toml");
   std::string text = cfg.text;
