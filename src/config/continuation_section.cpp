@@ -87,6 +87,8 @@ void read_held_phases(const Config& cfg, const toml::node& node, const model::Od
     h.name = text(cfg, e, "held_phases");
     if (h.name == "angle_max") throw Error(where(cfg, e) + ": [continuation] held_phases: give a leg's liftoff or touchdown");
     h.event = named_section(cfg, e, m, p, "held_phases");
+    for (const continuation::HeldPhase& other : o.shooting.held_phases)
+      if (other.name == h.name) throw Error(where(cfg, e) + ": [continuation] held phase '" + h.name + "' listed twice");
     o.shooting.held_phases.push_back(h);
   }
 }

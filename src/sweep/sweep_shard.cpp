@@ -184,7 +184,13 @@ MergeOutcome merge_shards(const std::vector<std::string>& parts, const std::stri
   std::vector<PointResult> all;
   for (auto& r : results) all.push_back(std::move(*r));
   const auto base = in.make(0);
-  write_sweep_h5(output, spec, all, base->parameters(), base->parameters().values(), {in.resolved_config, command});
+  try {
+    write_sweep_h5(output, spec, all, base->parameters(), base->parameters().values(), {in.resolved_config, command});
+  } catch (const Error& e) {  // HDF5's messages name the object; say which file it was
+    const std::string what = e.what();
+    if (what.find(output) != std::string::npos) throw;
+    throw Error(output + ": " + what);
+  }
   out.n_points = spec.n_points;
   out.n_shards = shards.size();
   return out;
