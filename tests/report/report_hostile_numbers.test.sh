@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # `phasmid report` on files with ±1e308 numbers (features, parameters, a sweep's outputs, a
-# continuation branch) and with continuation special points whose columns disagree in length:
+# continuation branch) and with continuation special points whose columns disagree in length
+# or hold NaN:
 # the report exits 0 and the page draws in headless Chromium with no script error
 # (body data-status="ok", data-errors empty; issue #42). Usage: PHASMID SOURCE_DIR
 set -u
@@ -63,7 +64,9 @@ f["gsa/y/ST_conf"][...] = -1e308'
 edit cont.h5 cont_huge 'p = f["continuation/features/period_ms"]; p[0] = 1e308; p[1] = -1e308
 f["continuation/period_ms"][0] = 1e308'
 edit cont.h5 cont_special 'g = f["continuation/special_points"]; del g["index"]; g["index"] = np.zeros(0)'
-for name in feature_huge sweep_huge sweep2_huge gsa_huge cont_huge cont_special; do
+edit cont.h5 cont_special_nan 'g = f["continuation/special_points"]
+for n in ["index", "parameter", "period_ms"]: del g[n]; g[n] = np.full(len(g["kind"]), np.nan)'
+for name in feature_huge sweep_huge sweep2_huge gsa_huge cont_huge cont_special cont_special_nan; do
   err=$("$PHASMID" report "$name.h5" -o "$name.html" 2>&1) || { echo "FAIL report $name: $err"; fail=1; continue; }
   # 300 s: a hang guard only (the page's 15 s are Chromium's virtual time, not the machine's).
   timeout 300 /usr/bin/chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage \
