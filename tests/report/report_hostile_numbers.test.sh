@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # `phasmid report` on files with ±1e308 numbers (features, parameters, a sweep's outputs, a
-# continuation branch) and with continuation special points whose columns disagree in length
-# or hold NaN:
-# the report exits 0 and the page draws in headless Chromium with no script error
+# continuation branch) and with continuation special points whose columns disagree in length or
+# hold NaN: the report exits 0 and the page draws in headless Chromium with no script error
 # (body data-status="ok", data-errors empty; issue #42). Usage: PHASMID SOURCE_DIR
 set -u
 PHASMID=$(readlink -f "$1")
