@@ -106,7 +106,7 @@
   var VIRIDIS = [[68, 1, 84], [72, 40, 120], [62, 74, 137], [49, 104, 142], [38, 130, 142], [31, 158, 137], [53, 183, 121], [109, 205, 89], [180, 222, 44], [253, 231, 37]];
   var RDBU = [[33, 102, 172], [103, 169, 207], [209, 229, 240], [247, 247, 247], [253, 219, 199], [239, 138, 98], [178, 24, 43]];
   function ramp(stops, f) {
-    f = Math.max(0, Math.min(1, f));
+    f = f >= 0 ? Math.min(1, f) : 0;  // NaN too: a colour, never stops[NaN]
     var x = f * (stops.length - 1), i = Math.min(Math.floor(x), stops.length - 2), r = x - i;
     var c = [0, 1, 2].map(function (k) { return Math.round(stops[i][k] + r * (stops[i + 1][k] - stops[i][k])); });
     return 'rgb(' + c.join(',') + ')';
@@ -124,6 +124,8 @@
       return el('span', null, [el('span', { cls: 'swatch', style: 'background:' + e[1] }), e[0]]);
     })), fig.querySelector('figcaption'));
   }
+  // (v - lo) / (hi - lo) in halves: hi - lo of two finite numbers may overflow (1e308 - -1e308).
+  function fraction(v, lo, hi) { return (v / 2 - lo / 2) / (hi / 2 - lo / 2); }
   function finiteRange(values) {
     var lo = Infinity, hi = -Infinity;
     values.forEach(function (v) { if (v !== null && isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); } });
@@ -573,7 +575,7 @@
       var label = withUnits(ft.name, ft.units);
       drawPanels('fig-sweep-' + safeId(ft.name), ft.name, function (i) { return ft.values[i]; }, function (i) {
         var v = ft.values[i];
-        return v === null || status[i] !== 'ok' ? '#d0d0d0' : ramp(VIRIDIS, (v - rng[0]) / (rng[1] - rng[0]));
+        return v === null || status[i] !== 'ok' ? '#d0d0d0' : ramp(VIRIDIS, fraction(v, rng[0], rng[1]));
       }, label, function (fig) { colorbar(fig, VIRIDIS, rng[0], rng[1], label + '; grey: failed or undefined'); }, true);
     });
     if (gait || s.status) {

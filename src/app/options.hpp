@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "dist/executor.hpp"
+
 namespace phasmid::app {
 
 inline void add_config_arg(CLI::App& sub, std::string& config, const std::string& what = "scenario config (TOML)") {
@@ -22,7 +24,7 @@ inline void add_quiet(CLI::App& sub, bool& quiet) {
 inline void add_threads(CLI::App& sub, int& threads) {
   sub.add_option("-j,--threads", threads,
                  "worker threads (default: OMP_NUM_THREADS or all cores; per rank under mpirun: OMP_NUM_THREADS or 1)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, dist::kMaxThreads));  // says the limit (NonNegativeNumber printed DBL_MAX in full)
 }
 inline void add_json(CLI::App& sub, bool& json) { sub.add_flag("--json", json, "print the results as JSON on stdout"); }
 

@@ -64,7 +64,7 @@ const RegisterVerb reg{{"gsa", "Run a global sensitivity analysis ([gsa] section
                           add_threads(sub, a->threads);
                           sub.add_option("--stop-after", a->stop_after,
                                          "testing: stop as if interrupted after computing K design points")
-                              ->check(CLI::NonNegativeNumber);
+                              ->check(CLI::Range(0, 10000000));  // at most the sweep's points; says the limit
                           add_quiet(sub, a->quiet);
                           return std::function<int()>([a] { return run(*a); });
                         }}};

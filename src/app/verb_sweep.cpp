@@ -84,7 +84,7 @@ const RegisterVerb reg{{"sweep", "Run every point of a parameter sweep ([sweep] 
                           add_threads(sub, a->threads);
                           sub.add_option("--stop-after", a->stop_after,
                                          "testing: stop as if interrupted after computing K points")
-                              ->check(CLI::NonNegativeNumber);
+                              ->check(CLI::Range(0, 10000000));  // at most the sweep's points; says the limit
                           add_quiet(sub, a->quiet);
                           add_json(sub, a->json);
                           return std::function<int()>([a] { return run(*a); });

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
 
 #include "common/error.hpp"
 #include "features/features.hpp"
@@ -10,6 +12,13 @@
 
 namespace phasmid::config {
 namespace {
+
+std::string g(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
 
 // section = "<leg>.liftoff" (beta rising through the leg's ground-contact threshold),
 // "<leg>.touchdown" (falling through it) or "angle_max" (the first angle's maxima).
@@ -39,6 +48,14 @@ void read_range(const Config& cfg, const toml::node& node, continuation::Continu
   if (!a || a->size() != 2) throw Error(where(cfg, node) + ": [continuation] range must be [start, end]");
   o.start = number(cfg, *a->get(0), "range");
   o.end = number(cfg, *a->get(1), "range");
+  if (o.start == o.end) throw Error(where(cfg, node) + ": [continuation] range must have two different values");
+}
+
+// A value the parameter may take (model::Parameter's admissible range), or file:line.
+void check_admissible(const Config& cfg, const toml::node& node, const model::Parameter& p, double v) {
+  if (v < p.lower || v > p.upper)
+    throw Error(where(cfg, node) + ": [continuation] impossible value " + g(v) + " for parameter '" + p.name +
+                "' (allowed range [" + g(p.lower) + ", " + g(p.upper) + "] " + p.unit + ")");
 }
 
 void read_features(const Config& cfg, const toml::node& node, const model::OdeModel& m, continuation::ContinuationOptions& o) {
@@ -53,6 +70,8 @@ void read_features(const Config& cfg, const toml::node& node, const model::OdeMo
       throw Error(where(cfg, e) + ": [continuation] unknown feature '" + name + "'" +
                   (near.empty() ? "" : " (did you mean '" + near + "'?)"));
     }
+    if (std::find(o.features.begin(), o.features.end(), name) != o.features.end())
+      throw Error(where(cfg, e) + ": [continuation] feature '" + name + "' listed twice");
     o.features.push_back(name);
   }
 }
@@ -68,6 +87,8 @@ void read_held_phases(const Config& cfg, const toml::node& node, const model::Od
     h.name = text(cfg, e, "held_phases");
     if (h.name == "angle_max") throw Error(where(cfg, e) + ": [continuation] held_phases: give a leg's liftoff or touchdown");
     h.event = named_section(cfg, e, m, p, "held_phases");
+    for (const continuation::HeldPhase& other : o.shooting.held_phases)
+      if (other.name == h.name) throw Error(where(cfg, e) + ": [continuation] held phase '" + h.name + "' listed twice");
     o.shooting.held_phases.push_back(h);
   }
 }
@@ -83,10 +104,80 @@ void read_linked(const Config& cfg, const toml::node& node, const model::OdeMode
       throw Error(where(cfg, *value) + ": [continuation.linked] unknown parameter '" + name + "'" +
                   (near.empty() ? "" : " (did you mean '" + near + "'?)"));
     }
+    if (name == o.parameter)
+      throw Error(where(cfg, *value) + ": [continuation.linked] '" + name + "' is the continued parameter (its range is [continuation] range)");
+    for (const auto& l : o.linked)
+      if (l.name == name) throw Error(where(cfg, *value) + ": [continuation.linked] '" + name + "' given twice");
     const toml::array* a = value->as_array();
     if (!a || a->size() != 2) throw Error(where(cfg, *value) + ": [continuation.linked] " + name + " must be [from, to]");
+    const model::Parameter& p = m.parameters().at(name);
+    for (const toml::node& e : *a) check_admissible(cfg, e, p, number(cfg, e, name));
     o.linked.push_back({name, number(cfg, *a->get(0), name), number(cfg, *a->get(1), name)});
   }
+}
+
+// "file:line: [continuation] KEY = V must be in (lo, hi]" and the like: every number of the
+// section is bounded, so that no value wraps, ends a correct branch at once or runs without end.
+struct Bounds {
+  double lo, hi;
+  bool lo_open = false, hi_open = false;
+};
+
+double bounded(const Config& cfg, const toml::node& n, const char* key, Bounds b, bool whole = false) {
+  const double v = number(cfg, n, key);
+  const bool ok = (b.lo_open ? v > b.lo : v >= b.lo) && (b.hi_open ? v < b.hi : v <= b.hi);
+  if (!ok || (whole && v != std::floor(v)))
+    throw Error(where(cfg, n) + ": [continuation] " + key + " = " + g(v) + " must be " + (whole ? "a whole number " : "") +
+                "in " + (b.lo_open ? "(" : "[") + g(b.lo) + ", " + g(b.hi) + (b.hi_open ? ")" : "]"));
+  return v;
+}
+
+// Bounds of the counts and durations (docs/continuation.md, "Limits"). Durations share the
+// run-time bound of every run (config::kMaxTEndMs); the longest features run of a point is
+// feature_cycles x max_period_factor x max_period_ms, bounded alike.
+constexpr double kMaxPoints = 100000, kMaxIterations = 1000, kMaxFeatureCycles = 1000, kMaxPeriodFactor = 1000;
+
+void read_numbers(const Config& cfg, const toml::table& t, continuation::ContinuationOptions& o) {
+  auto num = [&](const char* key, double& into, Bounds b) {
+    if (auto* n = t.get(key)) into = bounded(cfg, *n, key, b);
+  };
+  auto count = [&](const char* key, int& into, double lo, double hi) {
+    if (auto* n = t.get(key)) into = static_cast<int>(bounded(cfg, *n, key, {lo, hi}, true));
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  // A step left out takes its default (continuation.hpp); one given must be positive.
+  num("initial_step", o.initial_step, {0, inf, true, true});
+  num("min_step", o.min_step, {0, inf, true, true});
+  num("max_step", o.max_step, {0, inf, true, true});
+  num("transient_ms", o.shooting.transient_ms, {0, kMaxTEndMs});
+  num("max_period_ms", o.shooting.max_period_ms, {0, kMaxTEndMs, true});
+  num("tolerance", o.shooting.tolerance, {0, inf, true, true});
+  num("residual_rtol", o.shooting.residual_rtol, {0, 1, false, true});
+  num("neutral_tolerance", o.shooting.neutral_tolerance, {0, 1, false, true});
+  // A factor <= 1 or a fraction >= 1 would end a correct branch at its first points.
+  num("max_period_factor", o.max_period_factor, {1, kMaxPeriodFactor, true});
+  num("hopf_amplitude_fraction", o.hopf_amplitude_fraction, {0, 1, false, true});
+  if (auto* n = t.get("feature_cycles")) o.feature_cycles = bounded(cfg, *n, "feature_cycles", {2, kMaxFeatureCycles}, true);
+  count("max_points", o.max_points, 2, kMaxPoints);
+  count("max_iterations", o.shooting.max_iterations, 1, kMaxIterations);
+  count("locate_iterations", o.locate_iterations, 1, kMaxIterations);
+  const double longest = o.feature_cycles * o.max_period_factor * o.shooting.max_period_ms;
+  if (longest > kMaxTEndMs) {
+    const char* key = t.get("feature_cycles") ? "feature_cycles" : t.get("max_period_factor") ? "max_period_factor" : "max_period_ms";
+    throw Error(where(cfg, *t.get(key)) + ": [continuation] feature_cycles x max_period_factor x max_period_ms = " + g(longest) +
+                " ms must be at most " + g(kMaxTEndMs) + " ms (the longest features run of a point)");
+  }
+}
+
+// min_step <= initial_step <= max_step, with the defaults of the ones left out.
+void check_steps(const Config& cfg, const toml::table& t, const continuation::ContinuationOptions& o) {
+  continuation::ContinuationOptions d = o;
+  continuation::fill_default_steps(d);
+  if (d.min_step <= d.initial_step && d.initial_step <= d.max_step) return;
+  const toml::node* n = t.get("initial_step") ? t.get("initial_step") : t.get("min_step") ? t.get("min_step") : t.get("max_step");
+  throw Error(where(cfg, n ? *n : static_cast<const toml::node&>(t)) + ": [continuation] needs min_step (" + g(d.min_step) +
+              ") <= initial_step (" + g(d.initial_step) + ") <= max_step (" + g(d.max_step) +
+              "); the defaults: min_step = |range|/1e5, initial_step = |range|/50, max_step = |range|/10");
 }
 
 }  // namespace
@@ -113,6 +204,8 @@ continuation::ContinuationOptions continuation_options(const Config& cfg, const 
                 (near.empty() ? "" : " (did you mean '" + near + "'?)"));
   }
   read_range(cfg, *range, o);
+  for (const toml::node& e : *range->as_array())
+    check_admissible(cfg, e, m.parameters().at(o.parameter), number(cfg, e, "range"));
   // The default (the first joint angle's maxima) only where no section is given: a model
   // without joint angles has none.
   if (auto* n = t->get("section")) o.shooting.section = named_section(cfg, *n, m, p);
@@ -126,37 +219,11 @@ continuation::ContinuationOptions continuation_options(const Config& cfg, const 
   }
   if (auto* n = t->get("section_level")) o.shooting.section.level = number(cfg, *n, "section_level");
   if (auto* n = t->get("section_direction")) o.shooting.section.direction = direction(cfg, *n);
-  auto num = [&](const char* key, double& into) {
-    if (auto* n = t->get(key)) into = number(cfg, *n, key);
-  };
-  auto count = [&](const char* key, int& into) {
-    if (auto* n = t->get(key)) {
-      const double v = number(cfg, *n, key);
-      if (!(v >= 1) || v != std::floor(v)) throw Error(where(cfg, *n) + ": [continuation] " + key + " must be a whole number >= 1");
-      into = static_cast<int>(v);
-    }
-  };
-  num("initial_step", o.initial_step);
-  num("min_step", o.min_step);
-  num("max_step", o.max_step);
-  num("transient_ms", o.shooting.transient_ms);
-  num("max_period_ms", o.shooting.max_period_ms);
-  num("tolerance", o.shooting.tolerance);
-  num("residual_rtol", o.shooting.residual_rtol);
-  num("neutral_tolerance", o.shooting.neutral_tolerance);
-  num("feature_cycles", o.feature_cycles);
-  num("max_period_factor", o.max_period_factor);
-  num("hopf_amplitude_fraction", o.hopf_amplitude_fraction);
-  count("max_points", o.max_points);
-  count("max_iterations", o.shooting.max_iterations);
-  count("locate_iterations", o.locate_iterations);
+  read_numbers(cfg, *t, o);
   if (auto* n = t->get("features")) read_features(cfg, *n, m, o);
   if (auto* n = t->get("linked")) read_linked(cfg, *n, m, o);
   if (auto* n = t->get("held_phases")) read_held_phases(cfg, *n, m, p, o);
-  if (!(o.shooting.tolerance > 0) || !(o.shooting.residual_rtol >= 0) ||
-      !(o.shooting.neutral_tolerance >= 0 && o.shooting.neutral_tolerance < 1) || !(o.shooting.transient_ms >= 0) || !(o.shooting.max_period_ms > 0) ||
-      !(o.feature_cycles >= 2))
-    throw Error(where(cfg, *t) + ": [continuation] needs tolerance > 0, 0 <= neutral_tolerance < 1, transient_ms >= 0, max_period_ms > 0, feature_cycles >= 2");
+  check_steps(cfg, *t, o);
   return o;
 }
 

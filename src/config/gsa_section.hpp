@@ -18,4 +18,9 @@ namespace phasmid::config {
 // naming the nearest one.
 gsa::GsaSpec parse_gsa_section(const Config& cfg, const std::vector<features::FeatureInfo>& catalogue);
 
+// The design `spec` gives over `n_parameters` ranges fits: Sobol' at most kSobolMaxDim / 2
+// parameters, and at most the sweep's 1e7 points (N x (2D + 2) or N x (D + 2); Morris
+// trajectories x (D + 1)). Errors name file:line of the key (or the 17th parameter).
+void check_gsa_design(const Config& cfg, const gsa::GsaSpec& spec, std::size_t n_parameters);
+
 }  // namespace phasmid::config

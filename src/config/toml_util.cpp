@@ -27,6 +27,9 @@ std::string text(const Config& cfg, const toml::node& node, const std::string& k
 
 double number(const Config& cfg, const toml::node& node, const std::string& key) {
   auto v = node.value<double>();
+  // toml++ converts only integers a double holds exactly; a larger one is still a number (to be
+  // refused by its bound, not as "not a number").
+  if (!v && node.is_integer()) v = static_cast<double>(*node.value<std::int64_t>());
   if (!v) throw Error(where(cfg, node) + ": '" + key + "' must be a number");
   if (!std::isfinite(*v)) throw Error(where(cfg, node) + ": '" + key + "' must be a finite number");
   return *v;

@@ -264,12 +264,21 @@ SpecialPoint failure_end(const Context& c, const std::vector<BranchPoint>& pts, 
               ", largest in " + row_name(c.model, c.shooting, c.last_failure.worst_row)};
 }
 
-ContinuationOptions checked(const model::OdeModel& model, ContinuationOptions o) {
+}  // namespace
+
+void fill_default_steps(ContinuationOptions& o) {
   const double range = std::abs(o.end - o.start);
-  if (!(range > 0)) throw Error("[continuation] range must have two different values");
   if (o.initial_step <= 0) o.initial_step = range / 50;
   if (o.min_step <= 0) o.min_step = range * 1e-5;
   if (o.max_step <= 0) o.max_step = range / 10;
+}
+
+namespace {
+
+ContinuationOptions checked(const model::OdeModel& model, ContinuationOptions o) {
+  const double range = std::abs(o.end - o.start);
+  if (!(range > 0)) throw Error("[continuation] range must have two different values");
+  fill_default_steps(o);
   if (!(o.min_step <= o.initial_step && o.initial_step <= o.max_step))
     throw Error("[continuation] needs min_step <= initial_step <= max_step");
   if (o.shooting.section.state >= model.num_states()) throw Error("[continuation] section state out of range");

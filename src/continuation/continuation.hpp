@@ -87,6 +87,10 @@ struct Branch {
   double seconds = 0.0;   // wall time
 };
 
+// Steps left at 0 take their defaults: min_step = |range|/1e5, initial_step = |range|/50,
+// max_step = |range|/10 (the config refuses a step <= 0, so 0 means "left out").
+void fill_default_steps(ContinuationOptions& o);
+
 // Throws Error if no cycle is found at `start` or the options are inconsistent.
 Branch continue_cycles(const model::OdeModel& model, std::vector<double> p, const ContinuationOptions& options);
 

@@ -41,10 +41,16 @@ json special_points(const io::H5Reader& r, const std::string& g) {
   const auto index = r.read_doubles(g + "/index");
   const auto par = r.read_doubles(g + "/parameter");
   const auto period = r.read_doubles(g + "/period_ms");
+  // A damaged or edited file may give the columns different lengths: then no row is trusted.
+  if (index.size() != kind.size() || par.size() != kind.size() || period.size() != kind.size())
+    throw Error(g + ": kind, index, parameter and period_ms have " + std::to_string(kind.size()) + ", " +
+                std::to_string(index.size()) + ", " + std::to_string(par.size()) + " and " +
+                std::to_string(period.size()) + " rows");
   for (size_t i = 0; i < kind.size(); ++i)
-    sp.push_back({{"kind", kind[i]}, {"note", i < note.size() ? note[i] : ""}, {"index", index.at(i)},
-                  {"parameter", std::isfinite(par.at(i)) ? json(par[i]) : json()},
-                  {"period_ms", std::isfinite(period.at(i)) ? json(period[i]) : json()}});
+    sp.push_back({{"kind", kind[i]}, {"note", i < note.size() ? note[i] : ""},
+                  {"index", index[i] >= 0 && index[i] < 1e15 ? json(std::floor(index[i])) : json()},
+                  {"parameter", std::isfinite(par[i]) ? json(par[i]) : json()},
+                  {"period_ms", std::isfinite(period[i]) ? json(period[i]) : json()}});
   return sp;
 }
 
@@ -82,7 +88,12 @@ void extract_continuation(const io::H5Reader& r, json& out) {
     c["held_fractions"] = numbers(r.read_doubles(g + "/held_phase_fractions"));
     c["held_names"] = r.read_string_attribute(g + "/held_phase_fractions", "names");
   }
-  c["special"] = special_points(r, g + "/special_points");
+  try {  // the branch is worth showing without them
+    c["special"] = special_points(r, g + "/special_points");
+  } catch (const Error& e) {
+    c["special"] = json::array();
+    out["ignored"].push_back(g + "/special_points (unreadable: " + e.what() + ")");
+  }
   out["continuation"] = c;
 }
 

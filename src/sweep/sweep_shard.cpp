@@ -1,5 +1,6 @@
 #include "sweep/sweep_shard.hpp"
 
+#include <algorithm>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -37,7 +38,7 @@ struct ShardFile {
   Shard shard;
 };
 
-ShardFile read_shard(const std::string& path) {
+ShardFile read_shard_file(const std::string& path) {
   io::H5Reader r(path);
   if (!r.exists("/sweep_shard"))
     throw Error(path + ": not a sweep shard (no /sweep_shard; shards are written by phasmid sweep --shard i/N)");
@@ -60,6 +61,17 @@ ShardFile read_shard(const std::string& path) {
   return f;
 }
 
+// Every error about a shard names its file (HDF5's own messages name only the object).
+ShardFile read_shard(const std::string& path) {
+  try {
+    return read_shard_file(path);
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    if (what.rfind(path + ":", 0) == 0) throw;
+    throw Error(path + ": " + what);
+  }
+}
+
 // Every shard of one sweep, each once; returns the path given for each shard index ("" if none).
 std::vector<std::string> check_shards(const std::vector<ShardFile>& shards) {
   const ShardFile& first = shards.front();
@@ -77,17 +89,39 @@ std::vector<std::string> check_shards(const std::vector<ShardFile>& shards) {
   return seen;
 }
 
+// The missing shards (of those that own points) and points are listed up to kListed each
+// ("..., and N more"): a merge of a few shards of a million must not print a million names.
+constexpr std::size_t kListed = 10;
+
 void refuse_missing(const std::vector<std::optional<PointResult>>& results, const std::vector<std::string>& seen) {
   std::string shards, points;
-  std::size_t n_missing = 0;
-  for (std::size_t k = 0; k < seen.size(); ++k)
-    if (seen[k].empty()) shards += (shards.empty() ? "" : ", ") + std::to_string(k) + "/" + std::to_string(seen.size());
+  std::size_t n_missing = 0, n_shards = 0;
+  for (std::size_t k = 0; k < seen.size() && k < results.size(); ++k)  // shard k >= n_points owns no point
+    if (seen[k].empty() && ++n_shards <= kListed)
+      shards += (shards.empty() ? "" : ", ") + std::to_string(k) + "/" + std::to_string(seen.size());
+  std::size_t first = results.size();
   for (std::size_t i = 0; i < results.size(); ++i)
-    if (!results[i] && ++n_missing <= 10) points += (points.empty() ? "" : ", ") + std::to_string(i);
+    if (!results[i] && ++n_missing <= kListed) {
+      points += (points.empty() ? "" : ", ") + std::to_string(i);
+      first = std::min(first, i);
+    }
   if (n_missing == 0) return;
+  const auto more = [](std::size_t n) { return n > kListed ? ", ... and " + std::to_string(n - kListed) + " more" : std::string(); };
+  // Every shard given but a point missing: the shard file lacks records (damaged or edited).
+  const std::string why = n_shards ? "shard" + std::string(n_shards > 1 ? "s " : " ") + shards + more(n_shards) + " not given"
+                                   : seen[first % seen.size()] + " holds no record of them";
   throw Error("merge: " + std::to_string(n_missing) + " of " + std::to_string(results.size()) + " points missing (" +
-              points + (n_missing > 10 ? ", ..." : "") + "): shard" + (shards.find(',') != std::string::npos ? "s " : " ") +
-              shards + " not given");
+              points + more(n_missing) + "): " + why);
+}
+
+// The sweep the shards ran, from the config and --set stored in `first`; an error in them
+// (a damaged or edited shard) names the shard file as well as the config's line.
+SweepInputs shard_inputs(const ShardFile& first) {
+  try {
+    return config::sweep_inputs(config::parse_config(first.config_text, first.config_path), first.sets);
+  } catch (const Error& e) {
+    throw Error(first.path + ": the config stored in /sweep_shard/config_text: " + e.what());
+  }
 }
 
 }  // namespace
@@ -131,8 +165,7 @@ MergeOutcome merge_shards(const std::vector<std::string>& parts, const std::stri
   const std::vector<std::string> seen = check_shards(shards);
   const ShardFile& first = shards.front();
   // The design and base parameters come from the config the shards ran, as in `phasmid sweep`.
-  const SweepInputs in =
-      config::sweep_inputs(config::parse_config(first.config_text, first.config_path), first.sets);
+  const SweepInputs in = shard_inputs(first);
   const SweepSpec& spec = in.spec;
   if (hex64(sweep_fingerprint(in.resolved_config, spec)) != first.fingerprint)
     throw Error(first.path + ": its config no longer gives the sweep it was run with (another phasmid version?)");
@@ -151,7 +184,13 @@ MergeOutcome merge_shards(const std::vector<std::string>& parts, const std::stri
   std::vector<PointResult> all;
   for (auto& r : results) all.push_back(std::move(*r));
   const auto base = in.make(0);
-  write_sweep_h5(output, spec, all, base->parameters(), base->parameters().values(), {in.resolved_config, command});
+  try {
+    write_sweep_h5(output, spec, all, base->parameters(), base->parameters().values(), {in.resolved_config, command});
+  } catch (const Error& e) {  // HDF5's messages name the object; say which file it was
+    const std::string what = e.what();
+    if (what.find(output) != std::string::npos) throw;
+    throw Error(output + ": " + what);
+  }
   out.n_points = spec.n_points;
   out.n_shards = shards.size();
   return out;

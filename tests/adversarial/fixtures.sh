@@ -39,3 +39,45 @@ f = h5py.File('$1', 'r+')
 $2
 f.close()"; }
 export -f have_h5py h5edit
+# cont.toml: the head of a [continuation] config of the Stuart-Landau test kind (cases append
+# lines from line 7: cont 'key = value\n'); gsa.toml: the Ishigami ranges and [gsa] features
+# (cases append from line 17: gsa 'N = 8\n'); part0.h5, part1.h5: the two shards of sweep.toml;
+# cont.h5: a short continuation branch, for report.
+cat >"$fixtures/cont.toml" <<'TOML'
+[model]
+type = "stuart_landau"
+[continuation]
+parameter = "sl.lambda"
+range = [0.05, 0.03]
+section_state = "sl.y"
+TOML
+cat >"$fixtures/gsa.toml" <<'TOML'
+[model]
+type = "ishigami"
+[[sweep.parameter]]
+name = "x1"
+lower = -3.14
+upper = 3.14
+[[sweep.parameter]]
+name = "x2"
+lower = -3.14
+upper = 3.14
+[[sweep.parameter]]
+name = "x3"
+lower = -3.14
+upper = 3.14
+[gsa]
+features = ["y"]
+TOML
+cont() { cp "$fixtures/cont.toml" "$in"; printf -- "$1" >>"$in"; }
+gsa() { cp "$fixtures/gsa.toml" "$in"; printf -- "$1" >>"$in"; }
+export -f cont gsa
+for i in 0 1; do
+  "$PHASMID" sweep "$fixtures/sweep.toml" -q -o "$fixtures/part$i.h5" -j 1 --shard $i/2 || echo "fixture part$i.h5 failed"
+done
+cont_fixture() {
+  cp "$fixtures/cont.toml" "$fixtures/cont_run.toml"
+  printf 'max_points = 4\ntransient_ms = 1500\nmax_period_ms = 150\n[simulation]\nrtol = 1e-8\natol = 1e-8\n' >>"$fixtures/cont_run.toml"
+  "$PHASMID" continue "$fixtures/cont_run.toml" -q -o "$fixtures/cont.h5" || echo "fixture cont.h5 failed"
+}
+cont_fixture
