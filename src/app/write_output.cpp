@@ -5,8 +5,14 @@
 #include <nlohmann/json.hpp>
 
 #include "app/verb.hpp"
+#include "dist/session.hpp"
 
 namespace phasmid::app {
+
+std::unique_ptr<io::OutputLock> lock_output(const std::string& out) {
+  if (dist::rank() != 0) return nullptr;
+  return std::make_unique<io::OutputLock>(out);
+}
 
 void write_run_file(io::H5Writer& w, const config::Config& cfg, const std::vector<std::string>& sets,
                     const scenario::Scenario& scenario) {
