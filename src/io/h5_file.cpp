@@ -205,18 +205,10 @@ void H5Writer::commit() {
   file_ = -1;
   // The close writes the last metadata: a file that failed it is not renamed into place.
   check(closed, "cannot close " + tmp_path_);
-  std::error_code ec;
-  std::filesystem::rename(tmp_path_, path_, ec);
-  if (ec) throw Error("cannot rename " + tmp_path_ + " to " + path_ + ": " + ec.message());
-  committed_ = true;
   // A lock held by the caller stays the caller's for its next write (gsa: the sweep, then the
-  // analysis). If another run took the name in this instant, that next write is refused.
-  if (!lock_->owned()) {
-    try {
-      lock_->get().keep();
-    } catch (const Error&) {
-    }
-  }
+  // analysis); a writer's own lock is released with the writer.
+  lock_->get().publish(!lock_->owned());
+  committed_ = true;
 }
 
 H5Reader::H5Reader(const std::string& path) : path_(path) {

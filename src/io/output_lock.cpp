@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -125,6 +126,33 @@ void OutputLock::keep() {
   if (fd < 0) throw busy(out_);
   ::close(fd_);
   fd_ = fd;
+}
+
+void OutputLock::publish(bool keep_holding) {
+  auto rename_or_throw = [&](const std::string& from) {
+    if (std::rename(from.c_str(), out_.c_str()) != 0)
+      throw Error("cannot rename " + tmp_ + " to " + out_ + ": " + std::strerror(errno));
+  };
+  if (!keep_holding) return rename_or_throw(tmp_);
+  // "<out>.tmp.next" is ours while we hold the output: no other run writes beside a held output.
+  const std::string next = tmp_ + ".next";
+  const int fd = ::open(next.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd >= 0 && ofd_lock(fd) && ::renameat2(AT_FDCWD, tmp_.c_str(), AT_FDCWD, next.c_str(), RENAME_EXCHANGE) == 0) {
+    ::close(fd_);
+    fd_ = fd;  // the new, empty "<out>.tmp"
+    if (std::rename(next.c_str(), out_.c_str()) != 0) {
+      const int e = errno;
+      ::unlink(next.c_str());
+      throw Error("cannot rename " + tmp_ + " to " + out_ + ": " + std::strerror(e));
+    }
+    return;
+  }
+  if (fd >= 0) ::close(fd), ::unlink(next.c_str());
+  rename_or_throw(tmp_);
+  try {
+    keep();
+  } catch (const Error&) {  // another run took the name in this instant: our next write is refused
+  }
 }
 
 OutputLock* OutputLock::held_by_this_thread(const std::string& out) {

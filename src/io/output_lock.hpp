@@ -35,6 +35,12 @@ class OutputLock {
   const std::string& output() const { return out_; }
   const std::string& tmp_path() const { return tmp_; }
 
+  // Renames the finished "<out>.tmp" onto <out>. With `keep_holding`, the lock moves to a new,
+  // empty "<out>.tmp" first and the two names are exchanged atomically (renameat2
+  // RENAME_EXCHANGE), so that no instant leaves "<out>.tmp" unlocked for another run; where the
+  // file system cannot exchange names, it renames, then keep()s. Throws "cannot rename ...".
+  void publish(bool keep_holding);
+
   // After "<out>.tmp" was renamed onto <out> (or removed) by this holder: locks a new, empty
   // "<out>.tmp" at once, so that the output stays this run's for a further write (gsa writes
   // the sweep, then the analysis). Nothing to do while the locked file is still "<out>.tmp".

@@ -676,8 +676,8 @@ std::string default_output_path(const std::string& h5_path) {
 
 void write_report(const std::string& h5_path, const std::string& html_path) {
   io::check_output_path(html_path, {h5_path});
-  io::HeldOutputLock lock(html_path);  // creates the directory; "<html>.tmp" is the locked file
-  const std::string html = render_html(extract(h5_path));
+  const std::string html = render_html(extract(h5_path));  // reads only the input: its errors first
+  io::HeldOutputLock lock(html_path);  // before "<html>.tmp" (the locked file) is written; makes the directory
   const std::string tmp = lock.get().tmp_path();
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);

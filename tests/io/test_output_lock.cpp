@@ -180,6 +180,8 @@ TEST(OutputLock, ACallersLockOutlastsACommitForTheNextWrite) {
     }
     EXPECT_TRUE(fs::exists(out));
     EXPECT_TRUE(locked_by_someone(tmp)) << "a new .tmp is held at once after the rename";
+    EXPECT_EQ(fs::file_size(tmp), 0u);
+    EXPECT_FALSE(fs::exists(tmp + ".next")) << "the name the new .tmp was made under";
     {
       H5Reader first(out);
       H5Writer w(out);  // the second write (gsa's analysis) under the same lock
