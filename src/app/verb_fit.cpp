@@ -44,7 +44,7 @@ void print_estimates_json(const fit::ResidualProblem& problem, const fit::FitRes
 // write /fit, print the summary.
 int run_fit_verb(const FitArgs& a) {
   io::check_output_path(a.out, {a.config, a.ov.data, a.ov.parameters});
-  const auto lock = lock_output(a.out);  // rank 0 only
+  const auto lock = lock_output(a.out, true);  // rank 0 only
   config::Config cfg = config::load_config(a.config);
   auto scenario = config::build_scenario(cfg, a.sets);
   fit::FitSpec spec;
