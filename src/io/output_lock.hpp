@@ -36,8 +36,9 @@ class OutputLock {
   const std::string& tmp_path() const { return tmp_; }
 
   // Renames the finished "<out>.tmp" onto <out>. With `keep_holding`, the lock moves to a new,
-  // empty "<out>.tmp" first and the two names are exchanged atomically (renameat2
-  // RENAME_EXCHANGE), so that no instant leaves "<out>.tmp" unlocked for another run; where the
+  // empty "<out>.tmp" first (made as "<out>.tmp.next", a name no other run uses while the
+  // output is held) and the two names are exchanged atomically (renameat2 RENAME_EXCHANGE),
+  // so that no instant leaves "<out>.tmp" unlocked for another run; where the
   // file system cannot exchange names, it renames, then keep()s. Throws "cannot rename ...".
   void publish(bool keep_holding);
 
