@@ -49,6 +49,7 @@ void print_point(const continuation::ContinuationOptions& options, const continu
 int run_continue(const ContinueArgs& a) {
   config::Config cfg = config::load_config(a.config);
   io::check_output_path(a.out, {a.config}, {a.out + ".tmp", a.out + ".partial", a.out + ".partial.tmp"});
+  const auto lock = lock_output(a.out);  // also covers OUT.partial, written only by OUT's holder
   auto scenario = config::build_scenario(cfg, a.sets);
   const model::OdeModel* model = scenario->ode_model();
   if (!model)

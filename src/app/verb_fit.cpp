@@ -51,6 +51,7 @@ void print_estimates_json(const fit::ResidualProblem& problem, const fit::FitRes
 int run_fit_verb(const FitArgs& a) {
   fit::check_overrides(a.ov);  // before any file is touched; the Python module's fit() calls it too
   io::check_output_path(a.out, {a.config, a.ov.data, a.ov.parameters});
+  const auto lock = lock_output(a.out, true);  // rank 0 only
   config::Config cfg = config::load_config(a.config);
   auto scenario = config::build_scenario(cfg, a.sets);
   fit::FitSpec spec;

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "app/verb.hpp"
+#include "app/write_output.hpp"
 #include "io/output_path.hpp"
 #include "sweep/sweep_shard.hpp"
 
@@ -16,6 +17,7 @@ struct MergeArgs {
 
 int run(const MergeArgs& a) {
   io::check_output_path(a.out, a.parts);
+  const auto lock = lock_output(a.out);
   sweep::MergeOutcome r = sweep::merge_shards(a.parts, a.out, command_line());
   if (!a.quiet)
     std::cerr << "phasmid merge: " << r.n_shards << " shards, " << r.n_points << " points (" << r.n_failed

@@ -20,6 +20,7 @@ struct SensitivityArgs {
 
 int run_sensitivity(const SensitivityArgs& a) {
   io::check_output_path(a.out, {a.config});
+  const auto lock = lock_output(a.out);
   config::Config cfg = config::load_config(a.config);
   auto scenario = config::build_scenario(cfg, a.sets);
   const model::OdeModel* model = scenario->ode_model();

@@ -18,6 +18,7 @@ struct SimulateArgs {
 
 int run_simulate(const SimulateArgs& a) {
   io::check_output_path(a.out, {a.config});
+  const auto lock = lock_output(a.out);
   config::Config cfg = config::load_config(a.config);
   auto scenario = config::build_scenario(cfg, a.sets);
   config::SimulationSettings s = config::simulation_settings(cfg, scenario.get());

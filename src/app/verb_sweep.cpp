@@ -49,6 +49,7 @@ void print_ranges(const std::string& path, bool json) {
 
 int run(const SweepArgs& a) {
   io::check_output_path(a.out, {a.config}, {sweep::Journal::path_for(a.out)});
+  const auto lock = lock_output(a.out, true);  // rank 0 only, before the journal is opened
   config::Config cfg = config::load_config(a.config);
   sweep::SweepOptions o;
   o.output = a.out;

@@ -5,8 +5,20 @@
 #include <nlohmann/json.hpp>
 
 #include "app/verb.hpp"
+#include "dist/executor.hpp"
+#include "dist/session.hpp"
 
 namespace phasmid::app {
+
+std::unique_ptr<io::OutputLock> lock_output(const std::string& out, bool release_workers) {
+  if (dist::rank() != 0) return nullptr;
+  try {
+    return std::make_unique<io::OutputLock>(out);
+  } catch (...) {
+    if (release_workers) dist::release_workers();
+    throw;
+  }
+}
 
 void write_run_file(io::H5Writer& w, const config::Config& cfg, const std::vector<std::string>& sets,
                     const scenario::Scenario& scenario) {

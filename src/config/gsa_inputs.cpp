@@ -7,9 +7,12 @@
 #include "config/gsa_section.hpp"
 #include "config/sweep_inputs.hpp"
 #include "config/sweep_section.hpp"
+#include "dist/session.hpp"
 #include "gsa/resolution.hpp"
+#include "io/output_lock.hpp"
 
 #include <cmath>
+#include <optional>
 
 namespace phasmid::config {
 
@@ -42,6 +45,10 @@ gsa::GsaResult analyse_and_write(const GsaInputs& in, const std::string& path, c
 
 GsaOutcome run_gsa(const GsaInputs& in, const sweep::SweepOptions& o, bool sweep_done) {
   GsaOutcome out;
+  // Rank 0 holds the output from the sweep's journal to the analysis' rename (the verb's lock,
+  // or one taken here for the Python module).
+  std::optional<io::HeldOutputLock> lock;
+  if (dist::rank() == 0) lock.emplace(o.output);
   if (!sweep_done) {
     out.sweep = sweep::run_sweep(in.sweep, o);
     if (out.sweep.worker || !out.sweep.complete) return out;

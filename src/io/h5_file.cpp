@@ -8,6 +8,7 @@
 
 #include "common/error.hpp"
 #include "io/h5_heap_check.hpp"
+#include "io/output_lock.hpp"
 #include "io/output_path.hpp"
 #include "build_info.hpp"
 
@@ -51,17 +52,19 @@ std::string now_iso8601() {
 
 H5Writer::H5Writer(const std::string& path) : path_(path), tmp_path_(path + ".tmp") {
   check_output_path(path);
-  auto dir = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  if (!dir.empty()) std::filesystem::create_directories(dir, ec);
-  if (ec) throw Error("cannot create directory " + dir.string() + " for " + path + ": " + ec.message());
-  file_ = H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  lock_ = std::make_unique<HeldOutputLock>(path);  // before "<path>.tmp" is truncated
+  // HDF5's own flock() is left out: the output lock already excludes other writers, and where
+  // flock() is emulated by record locks (NFS) it would collide with that lock.
+  const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  if (fapl >= 0) H5Pset_file_locking(fapl, false, true);
+  file_ = H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl >= 0 ? fapl : H5P_DEFAULT);
+  if (fapl >= 0) H5Pclose(fapl);
   if (file_ < 0) throw Error("cannot create HDF5 file " + tmp_path_);
 }
 
 H5Writer::~H5Writer() {
   if (file_ >= 0) H5Fclose(file_);
-  if (!committed_) std::remove(tmp_path_.c_str());
+  if (!committed_) std::remove(tmp_path_.c_str());  // still under the lock, released after
 }
 
 void H5Writer::ensure_group(const std::string& path) {
@@ -202,9 +205,9 @@ void H5Writer::commit() {
   file_ = -1;
   // The close writes the last metadata: a file that failed it is not renamed into place.
   check(closed, "cannot close " + tmp_path_);
-  std::error_code ec;
-  std::filesystem::rename(tmp_path_, path_, ec);
-  if (ec) throw Error("cannot rename " + tmp_path_ + " to " + path_ + ": " + ec.message());
+  // A lock held by the caller stays the caller's for its next write (gsa: the sweep, then the
+  // analysis); a writer's own lock is released with the writer.
+  lock_->get().publish(!lock_->owned());
   committed_ = true;
 }
 

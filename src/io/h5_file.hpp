@@ -6,11 +6,14 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace phasmid::io {
+
+class HeldOutputLock;
 
 // Root attributes every phasmid HDF5 file carries.
 struct RunInfo {
@@ -20,8 +23,10 @@ struct RunInfo {
 
 class H5Writer {
  public:
+  // Writes under the output's lock (io/output_lock.hpp): the one this thread holds already, or
+  // its own, taken before "<path>.tmp" is created or truncated.
   explicit H5Writer(const std::string& path);
-  ~H5Writer();  // without commit(): closes and deletes the temporary file
+  ~H5Writer();  // without commit(): closes and deletes the temporary file, then unlocks
   H5Writer(const H5Writer&) = delete;
   H5Writer& operator=(const H5Writer&) = delete;
 
@@ -46,6 +51,7 @@ class H5Writer {
 
  private:
   std::string path_, tmp_path_;
+  std::unique_ptr<HeldOutputLock> lock_;
   hid_t file_ = -1;
   bool committed_ = false;
 };

@@ -7,6 +7,7 @@
 // same way. io::H5Writer and the report writer call it themselves for the kind checks; every
 // verb that writes calls it with its inputs before any work, and a new verb must too:
 // simulate, fit, sweep, sensitivity, report, merge, demo (its directory), gsa, continue.
+// Right after it, a verb locks the output (io/output_lock.hpp) before touching any file of it.
 #include <string>
 #include <vector>
 

@@ -15,6 +15,7 @@
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
 #include "io/h5_scalar.hpp"
+#include "io/output_lock.hpp"
 #include "io/output_path.hpp"
 #include "report/continuation_panels.hpp"
 #include "io/h5_stream.hpp"
@@ -675,13 +676,9 @@ std::string default_output_path(const std::string& h5_path) {
 
 void write_report(const std::string& h5_path, const std::string& html_path) {
   io::check_output_path(html_path, {h5_path});
-  const std::string html = render_html(extract(h5_path));
-  std::filesystem::path out(html_path);
-  if (out.has_parent_path()) {
-    std::error_code ec;
-    std::filesystem::create_directories(out.parent_path(), ec);
-  }
-  const std::string tmp = html_path + ".tmp." + std::to_string(::getpid());
+  const std::string html = render_html(extract(h5_path));  // reads only the input: its errors first
+  io::HeldOutputLock lock(html_path);  // before "<html>.tmp" (the locked file) is written; makes the directory
+  const std::string tmp = lock.get().tmp_path();
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
     if (!f) throw Error("cannot write " + tmp);

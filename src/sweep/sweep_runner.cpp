@@ -9,6 +9,7 @@
 
 #include "common/error.hpp"
 #include "dist/executor.hpp"
+#include "io/output_lock.hpp"
 #include "solver/simulator.hpp"
 #include "sweep/progress.hpp"
 #include "sweep/sweep_shard.hpp"
@@ -91,6 +92,15 @@ void write_result(const MasterJob& job, std::vector<std::optional<PointResult>>&
 SweepOutcome run_master(const MasterJob& job, dist::Executor& exec, const dist::Evaluate& evaluate, SweepOutcome out) {
   const SweepOptions& opt = job.opt;
   const SweepSpec& spec = job.in.spec;
+  // The output's lock before the journal is opened or truncated, held until the file is renamed
+  // into place (taken by the verb already, or here for the Python module).
+  std::optional<io::HeldOutputLock> lock;
+  try {
+    lock.emplace(opt.output);
+  } catch (...) {
+    dist::release_workers();
+    throw;
+  }
   std::unique_ptr<Journal> journal = open_journal(job, out.journal);
   std::vector<std::optional<PointResult>> results(spec.n_points);
   for (auto& [i, r] : journal->recovered()) results[i] = r;
