@@ -9,6 +9,7 @@
 
 #include "bindings.hpp"
 #include "build_info.hpp"
+#include "io/output_lock.hpp"
 #include "io/output_path.hpp"
 #include "report/report.hpp"
 #include "solver/interrupt.hpp"
@@ -75,27 +76,29 @@ namespace {
 // FileResult.save: the bytes of a file the C++ core wrote, written as io::H5Writer writes (after
 // the output-path check with the result's inputs, into "<out>.tmp", renamed onto `out` when
 // complete, the .tmp removed on failure). One place for every byte-copy save from Python.
+// Writes as the C++ writers do: the output-path check, the output's lock (io::OutputLock, so a
+// second writer of OUT is refused before it touches a file), "<out>.tmp", then the rename. The
+// lock removes "<out>.tmp" if anything fails before the rename.
 void save_bytes(const std::string& out, const std::string& content, const std::vector<std::string>& inputs) {
   io::check_output_path(out, inputs);
-  const std::string tmp = out + ".tmp";
-  auto fail = [&](const std::string& what) {
-    const std::string reason = std::strerror(errno);
-    ::unlink(tmp.c_str());
-    throw Error("cannot " + what + " " + tmp + ": " + reason);
-  };
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw Error("cannot create " + tmp + ": " + std::strerror(errno));
+  io::HeldOutputLock lock(out);
+  const std::string& tmp = lock.get().tmp_path();
+  auto fail = [&](const std::string& what) { throw Error("cannot " + what + " " + tmp + ": " + std::strerror(errno)); };
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+  if (fd < 0) fail("write");
   for (size_t done = 0; done < content.size();) {
     const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
+      const int e = errno;
       ::close(fd);
+      errno = e;
       fail("write");
     }
     done += static_cast<size_t>(n);
   }
   if (::close(fd) != 0) fail("write");
-  if (::rename(tmp.c_str(), out.c_str()) != 0) fail("rename");
+  lock.get().publish(false);
 }
 
 void bind_errors(py::module_& m) {
