@@ -33,7 +33,8 @@ bool sweep_already_done(const GsaArgs& a) {
 }
 
 int run(const GsaArgs& a) {
-  io::check_output_path(a.out, {a.config}, {sweep::Journal::path_for(a.out)});
+  io::check_output_path(a.out, {a.config},
+                        {sweep::Journal::path_for(a.out), config::sweep_file_for(a.out), config::sweep_file_for(a.out) + ".tmp"});
   const config::GsaInputs in = config::gsa_inputs(config::load_config(a.config), a.sets);
   const bool sweep_done = sweep_already_done(a);
   if (sweep_done && dist::rank() != 0) return 0;  // MPI worker rank: rank 0 analyses

@@ -116,7 +116,7 @@ void write_shard_h5(const std::string& output, const SweepInputs& in, const Shar
   if (!records.empty()) w.write("/sweep_shard/records", records);
   w.write("/sweep_shard/config_text", std::vector<std::string>{in.config_text});
   if (!in.sets.empty()) w.write("/sweep_shard/sets", in.sets);
-  w.set_attribute("/sweep_shard", "fingerprint", hex64(sweep_fingerprint(in.resolved_config, in.spec)));
+  w.set_attribute("/sweep_shard", "fingerprint", hex64(sweep_fingerprint(in.resume_spec, in.spec)));
   w.set_attribute("/sweep_shard", "config_path", in.config_path);
   w.set_attribute("/sweep_shard", "shard", static_cast<double>(shard.index));
   w.set_attribute("/sweep_shard", "shards", static_cast<double>(shard.count));
@@ -134,7 +134,7 @@ MergeOutcome merge_shards(const std::vector<std::string>& parts, const std::stri
   const SweepInputs in =
       config::sweep_inputs(config::parse_config(first.config_text, first.config_path), first.sets);
   const SweepSpec& spec = in.spec;
-  if (hex64(sweep_fingerprint(in.resolved_config, spec)) != first.fingerprint)
+  if (hex64(sweep_fingerprint(in.resume_spec, spec)) != first.fingerprint)
     throw Error(first.path + ": its config no longer gives the sweep it was run with (another phasmid version?)");
   std::vector<std::optional<PointResult>> results(spec.n_points);
   MergeOutcome out;
@@ -151,7 +151,7 @@ MergeOutcome merge_shards(const std::vector<std::string>& parts, const std::stri
   std::vector<PointResult> all;
   for (auto& r : results) all.push_back(std::move(*r));
   const auto base = in.make(0);
-  write_sweep_h5(output, spec, all, base->parameters(), base->parameters().values(), {in.resolved_config, command});
+  write_sweep_h5(output, spec, all, base->parameters(), base->parameters().values(), {in.resolved_config, command}, in.resume_spec);
   out.n_points = spec.n_points;
   out.n_shards = shards.size();
   return out;
