@@ -87,7 +87,7 @@ sweep::SweepOptions options(const std::string& out, int threads, bool resume, lo
   return o;
 }
 
-config::GsaOutcome gsa(const std::string& text, const std::vector<std::string>& sets, const std::string& out,
+config::GsaOutcome run_gsa_text(const std::string& text, const std::vector<std::string>& sets, const std::string& out,
                        int threads, bool resume, long stop_after = -1) {
   const config::GsaInputs in = config::gsa_inputs(config::parse_config(text, "g.toml"), sets);
   const bool done = resume && !fs::exists(out + ".journal") && fs::exists(out);
@@ -140,29 +140,29 @@ TEST(ResumeSpec, ATriggerIsPartOfTheSpec) {
 TEST(ResumeSpec, AFinishedGsaFileIsNotRelabelledByAChangedParameterOrSet) {
   TempDir dir("gsa_file");
   const std::string out = dir / "g.h5";
-  ASSERT_TRUE(gsa(kGsa, {}, out, 2, false).analysed);
+  ASSERT_TRUE(run_gsa_text(kGsa, {}, out, 2, false).analysed);
   const std::string a0 = replaced(kGsa, "a = 7.0", "a = 0.0");
-  std::string e = error_of([&] { gsa(a0, {}, out, 1, true); });
+  std::string e = error_of([&] { run_gsa_text(a0, {}, out, 1, true); });
   EXPECT_NE(e.find("the config differs from the one " + out + " was made with (model parameter a: 7 in " + out + ", 0 now)"),
             std::string::npos) << e;
-  e = error_of([&] { gsa(kGsa, {"b=0.5"}, out, 1, true); });
+  e = error_of([&] { run_gsa_text(kGsa, {"b=0.5"}, out, 1, true); });
   EXPECT_NE(e.find("(model parameter b: 0.1 in " + out + ", 0.5 now)"), std::string::npos) << e;
-  e = error_of([&] { gsa(replaced(kGsa, "N = 64", "N = 32"), {}, out, 1, true); });
+  e = error_of([&] { run_gsa_text(replaced(kGsa, "N = 64", "N = 32"), {}, out, 1, true); });
   EXPECT_NE(e.find("design points differ"), std::string::npos) << e;
   // The same config, another thread count and another [gsa] analysis setting: re-analysed.
-  EXPECT_TRUE(gsa(replaced(kGsa, "bootstrap = 20", "bootstrap = 30"), {}, out, 1, true).analysed);
+  EXPECT_TRUE(run_gsa_text(replaced(kGsa, "bootstrap = 20", "bootstrap = 30"), {}, out, 1, true).analysed);
 }
 
 TEST(ResumeSpec, AGsaJournalIsNotResumedUnderAChangedParameterOrSet) {
   TempDir dir("gsa_journal");
   const std::string out = dir / "g.h5";
-  ASSERT_FALSE(gsa(kGsa, {}, out, 2, false, 100).analysed);
-  std::string e = error_of([&] { gsa(kGsa, {"a=0"}, out, 1, true); });
+  ASSERT_FALSE(run_gsa_text(kGsa, {}, out, 2, false, 100).analysed);
+  std::string e = error_of([&] { run_gsa_text(kGsa, {"a=0"}, out, 1, true); });
   EXPECT_NE(e.find("journal belongs to a different sweep: the config differs from the one it was started with "
                    "(model parameter a: 7 in the journal, 0 now)"),
             std::string::npos) << e;
   EXPECT_FALSE(fs::exists(out));
-  const auto rest = gsa(kGsa, {}, out, 1, true);  // another -j resumes
+  const auto rest = run_gsa_text(kGsa, {}, out, 1, true);  // another -j resumes
   ASSERT_TRUE(rest.analysed);
   EXPECT_EQ(rest.sweep.n_recovered, 100u);
   EXPECT_FALSE(fs::exists(out + ".journal"));
@@ -194,7 +194,7 @@ TEST(ResumeSpec, AGsaStoppedAfterItsSweepLeavesNoFileWithoutGsa) {
   s.kept_journal.reset();  // as if killed here: the journal stays, complete
   EXPECT_FALSE(fs::exists(out));
   EXPECT_TRUE(fs::exists(out + ".journal"));
-  const auto rest = gsa(kGsa, {}, out, 2, true);
+  const auto rest = run_gsa_text(kGsa, {}, out, 2, true);
   ASSERT_TRUE(rest.analysed);
   EXPECT_EQ(rest.sweep.n_computed, 0u);
   EXPECT_TRUE(io::H5Reader(out).exists("/gsa/y"));
