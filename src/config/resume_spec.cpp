@@ -1,7 +1,6 @@
 #include "config/resume_spec.hpp"
 
-#include <cstdio>
-#include <cstdlib>
+#include <charconv>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -9,15 +8,12 @@
 namespace phasmid::config {
 namespace {
 
-// The shortest decimal that reads back as the same double, so that the line names the value
-// as a person wrote it ("7", "0.1") and still tells every bit apart.
+// The shortest text that reads back as the same double (std::to_chars), so that the line names
+// the value as a person wrote it ("7", "300", "0.1") and still tells every bit apart.
 std::string shortest(double v) {
-  char buf[40];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 
 std::string value_text(const toml::node& n) {
