@@ -101,24 +101,34 @@ mcase f-set-unknown "nope" ":" fit fit.toml -o out.h5 --set nope=1
 mcase continue-under-mpi "phasmid continue runs in one process" ":" continue "$SRC/configs/continue_single_joint_vhh.toml" -o out.h5
 mcase simulate-under-mpi "phasmid simulate runs in one process" ":" simulate sweep.toml -o out.h5
 
-# Ctrl-C (SIGINT to mpirun) during a gsa, once 2000 points are journalled: one line from rank 0
-# saying how to resume (besides Open MPI's), the journal kept, no OUT; --resume under MPI then
-# gives the uninterrupted single-process file. The 300 s only catch a hang.
+# Ctrl-C (SIGINT to mpirun) during a gsa and a sweep, once 2000 points are journalled: one line
+# from rank 0 saying how to resume (besides Open MPI's), the journal kept, no OUT; --resume under
+# MPI then gives the uninterrupted single-process file. The 300 s only catch a hang.
+# ctrl_c VERB CONFIG POINTS WHAT GROUPS...
+ctrl_c() {
+  local verb=$1 cfg=$2 points=$3 what=$4; shift 4
+  "$PHASMID" "$verb" "$cfg" -o full_$verb.h5 -q -j 2 || bad "single-process $verb"
+  mpirun --oversubscribe -np 3 "$PHASMID" "$verb" "$cfg" -o c.h5 -q >c.out 2>c.err </dev/null &
+  local launcher=$! end=$((SECONDS + 300))
+  until [ -e c.h5.journal ] && [ "$(wc -l <c.h5.journal)" -gt 2000 ]; do
+    kill -0 $launcher 2>/dev/null && [ $SECONDS -lt $end ] || break
+    sleep 0.02
+  done
+  kill -INT $launcher; wait $launcher; local rc=$?
+  local ours; ours=$(grep -vE "$openmpi_lines" c.err)
+  [ $rc -ne 0 ] && [ "$(printf '%s\n' "$ours" | grep -c .)" -eq 1 ] && [ ! -e c.h5 ] && [ -s c.h5.journal ] &&
+    printf '%s\n' "$ours" | grep -qE "^phasmid $verb: interrupted with [0-9]+ of $points $what done \(kept in c.h5.journal\); continue with: mpirun \.\.\. phasmid $verb $cfg -o c.h5 --resume$" \
+    && ok || bad "Ctrl-C during $verb: rc=$rc, stderr: $(head -c 600 c.err)"
+  mpirun --oversubscribe -np 3 "$PHASMID" "$verb" "$cfg" -o c.h5 -q --resume </dev/null >/dev/null || bad "--resume after Ctrl-C during $verb"
+  local g
+  for g in "$@"; do h5diff -q full_$verb.h5 c.h5 "$g" "$g" && ok || bad "--resume after Ctrl-C during $verb: $g differs"; done
+  [ ! -e c.h5.journal ] && ok || bad "journal left after the resumed $verb"
+  rm -f c.h5
+}
 sed 's/^N = 64/N = 16384/' gsa.toml >large.toml
-"$PHASMID" gsa large.toml -o full.h5 -q -j 2 || bad "single-process large gsa"
-mpirun --oversubscribe -np 3 "$PHASMID" gsa large.toml -o c.h5 -q >c.out 2>c.err </dev/null &
-launcher=$!
-end=$((SECONDS + 300))
-until [ -e c.h5.journal ] && [ "$(wc -l <c.h5.journal)" -gt 2000 ]; do
-  kill -0 $launcher 2>/dev/null && [ $SECONDS -lt $end ] || break
-  sleep 0.02
-done
-kill -INT $launcher; wait $launcher; rc=$?
-ours=$(grep -vE "$openmpi_lines" c.err)
-[ $rc -ne 0 ] && [ "$(printf '%s\n' "$ours" | grep -c .)" -eq 1 ] && [ ! -e c.h5 ] && [ -s c.h5.journal ] &&
-  printf '%s\n' "$ours" | grep -qE '^phasmid gsa: interrupted with [0-9]+ of 131072 design points done \(kept in c.h5.journal\); continue with: mpirun \.\.\. phasmid gsa large.toml -o c.h5 --resume$' \
-  && ok || bad "Ctrl-C: rc=$rc, stderr: $(head -c 600 c.err)"
-mpirun --oversubscribe -np 3 "$PHASMID" gsa large.toml -o c.h5 -q --resume </dev/null && h5diff -q full.h5 c.h5 /sweep /sweep &&
-  h5diff -q full.h5 c.h5 /gsa /gsa && [ ! -e c.h5.journal ] && ok || bad "--resume after Ctrl-C: not the uninterrupted file"
+ctrl_c gsa large.toml 131072 "design points" /sweep /gsa
+awk '/^\[gsa\]/ { exit } 1' gsa.toml >lhs.toml
+printf '[sweep]\ndesign = "lhs"\npoints = 100000\n' >>lhs.toml
+ctrl_c sweep lhs.toml 100000 points /sweep
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
