@@ -198,4 +198,12 @@ TEST(ResumeSpec, AGsaStoppedAfterItsSweepLeavesNoFileWithoutGsa) {
   ASSERT_TRUE(rest.analysed);
   EXPECT_EQ(rest.sweep.n_computed, 0u);
   EXPECT_TRUE(io::H5Reader(out).exists("/gsa/y"));
+  EXPECT_FALSE(fs::exists(config::sweep_file_for(out)));
+
+  // A file with /sweep and no /gsa (an older phasmid killed in its analysis): --resume analyses it.
+  const std::string old = dir / "old.h5";
+  ASSERT_TRUE(sweep::run_sweep(in.sweep, options(old, 2, false)).complete);
+  ASSERT_FALSE(io::H5Reader(old).exists("/gsa"));
+  ASSERT_TRUE(run_gsa_text(kGsa, {}, old, 1, true).analysed);
+  EXPECT_TRUE(io::H5Reader(old).exists("/gsa/y"));
 }
