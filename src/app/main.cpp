@@ -20,8 +20,7 @@ const std::string& command_line() { return g_command_line; }
 
 namespace {
 // Under mpirun every rank runs the verb; rank 0 reports errors, other ranks name themselves.
-std::string error_prefix() {
-  const int r = phasmid::dist::rank();
+std::string error_prefix(int r = phasmid::dist::rank()) {
   return r == 0 ? "phasmid: " : "phasmid (rank " + std::to_string(r) + "): ";
 }
 
@@ -42,7 +41,7 @@ int finish(int code, const std::string& line) {
   namespace dist = phasmid::dist;
   if (dist::size() > 1 && !dist::agreed()) {
     const dist::Agreement a = dist::agree(line, code);
-    if (dist::rank() == 0 && !a.all_ok) std::cerr << "phasmid: " << a.message << "\n";
+    if (dist::rank() == 0 && !a.all_ok) std::cerr << error_prefix(a.failed_rank) << a.message << "\n";
     return a.all_ok ? code : a.code;
   }
   if (line.empty()) return code;
@@ -85,7 +84,7 @@ int main(int argc, char** argv) {
   try {
     return finish(action ? action() : 1, "");
   } catch (const phasmid::dist::JobStopped& e) {  // another rank failed before any work
-    if (phasmid::dist::rank() == 0) std::cerr << "phasmid: " << e.message << "\n";
+    if (phasmid::dist::rank() == 0) std::cerr << error_prefix(e.failed_rank) << e.message << "\n";
     return e.code;
   } catch (const phasmid::Error& e) {
     return finish(1, "error: " + one_line(e.what()));

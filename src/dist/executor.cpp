@@ -87,7 +87,7 @@ std::unique_ptr<Executor> make_executor(int threads) {
   const int n = bounded_threads(threads);  // an Error here is every rank's, before the agreement
   if (!agreed()) {  // the ranks' first MPI work: all passed their checks, or none works
     const Agreement a = agree("", 0);
-    if (!a.all_ok) throw JobStopped{a.code, a.message};
+    if (!a.all_ok) throw JobStopped{a.code, a.message, a.failed_rank};
   }
   return make_mpi_executor(n);
 }

@@ -112,6 +112,7 @@ Agreement agree(const std::string& error, int code) {
   const int first = all_min(error.empty() ? g_size : g_rank);
   if (first == g_size) return a;
   a.all_ok = false;
+  a.failed_rank = first;
   if (error.empty()) a.code = 1;
   if (first != 0 && g_rank == first) {
     const std::string msg = std::to_string(code) + " " + error;
@@ -125,7 +126,7 @@ Agreement agree(const std::string& error, int code) {
     MPI_Recv(msg.data(), n, MPI_CHAR, first, kAgreeTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     const auto sp = msg.find(' ');
     a.code = std::atoi(msg.substr(0, sp).c_str());
-    a.message = "(rank " + std::to_string(first) + ") " + msg.substr(sp + 1);
+    a.message = msg.substr(sp + 1);
   }
 #endif
   return a;

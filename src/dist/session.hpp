@@ -33,7 +33,8 @@ int size();  // 1 without MPI
 struct Agreement {
   bool all_ok = true;
   int code = 0;          // the first failure's exit code (on the failing ranks their own)
-  std::string message;   // on rank 0: the first failing rank's line ("(rank 2) ..." if not 0)
+  std::string message;   // on rank 0: the first failing rank's line
+  int failed_rank = 0;   // that rank
 };
 Agreement agree(const std::string& error, int code);
 bool agreed();  // agree() was called on this rank
@@ -43,6 +44,7 @@ bool agreed();  // agree() was called on this rank
 struct JobStopped {
   int code;
   std::string message;
+  int failed_rank;
 };
 
 // RAII for main(): init on construction, finalize on destruction.
