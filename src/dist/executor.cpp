@@ -83,8 +83,8 @@ std::unique_ptr<Executor> make_openmp_executor(int threads) {
 
 std::unique_ptr<Executor> make_executor(int threads) {
   if (size() == 1) return make_openmp_executor(threads);
-  if (threads <= 0) threads = std::getenv("OMP_NUM_THREADS") ? omp_get_max_threads() : 1;
-  const int n = bounded_threads(threads);  // an Error here is every rank's, before the agreement
+  // An Error here (one rank's environment may differ) comes before the agreement: one line.
+  const int n = threads > 0 ? bounded_threads(threads) : std::getenv("OMP_NUM_THREADS") ? bounded_threads(0) : 1;
   if (!agreed()) {  // the ranks' first MPI work: all passed their checks, or none works
     const Agreement a = agree("", 0);
     if (!a.all_ok) throw JobStopped{a.code, a.message, a.failed_rank};

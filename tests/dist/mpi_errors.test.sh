@@ -100,6 +100,14 @@ mcase f-set-unknown "nope" ":" fit fit.toml -o out.h5 --set nope=1
 # verbs that run in one process
 mcase continue-under-mpi "phasmid continue runs in one process" ":" continue "$SRC/configs/continue_single_joint_vhh.toml" -o out.h5
 mcase simulate-under-mpi "phasmid simulate runs in one process" ":" simulate sweep.toml -o out.h5
+# A failure on a worker rank alone (its environment differs): rank 0 prints that rank's line.
+awk '/^\[gsa\]/ { exit } 1' gsa.toml >lhs_small.toml
+printf '[sweep]\ndesign = "lhs"\npoints = 100\n' >>lhs_small.toml
+mpirun --oversubscribe -np 2 "$PHASMID" sweep lhs_small.toml -o w.h5 : -np 1 -x OMP_NUM_THREADS=1000 "$PHASMID" sweep lhs_small.toml -o w.h5 \
+  >w.out 2>w.err </dev/null; rc=$?
+ours=$(grep -vE "$openmpi_lines" w.err)
+[ $rc -ne 0 ] && [ "$ours" = "phasmid (rank 2): error: OMP_NUM_THREADS 1000: at most 256 worker threads per process" ] && [ ! -e w.h5 ] &&
+  [ ! -e w.h5.journal ] && ok || bad "a worker's own failure: rc=$rc, stderr: $(head -c 600 w.err)"
 
 # Ctrl-C (SIGINT to mpirun) during a gsa and a sweep, once 2000 points are journalled: one line
 # from rank 0 saying how to resume (besides Open MPI's), the journal kept, no OUT; --resume under
