@@ -79,7 +79,7 @@ int bench_config(const std::string& config, int threads) {
   const double sweep_s = seconds_since(t0);
   if (!s.complete) return 1;
   const auto t1 = std::chrono::steady_clock::now();
-  const gsa::GsaResult r = config::analyse_and_write(in, out, "bench_gsa");
+  const gsa::GsaResult r = config::analyse_and_write(in, out, out, "bench_gsa");
   const double analysis_s = seconds_since(t1);
   std::remove(out.c_str());
   std::printf("# bench_gsa %s: %s, %zu design rows, %zu features, %zu bootstrap resamples, %s\n", config.c_str(),

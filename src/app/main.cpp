@@ -20,8 +20,7 @@ const std::string& command_line() { return g_command_line; }
 
 namespace {
 // Under mpirun every rank runs the verb; rank 0 reports errors, other ranks name themselves.
-std::string error_prefix() {
-  const int r = phasmid::dist::rank();
+std::string error_prefix(int r = phasmid::dist::rank()) {
   return r == 0 ? "phasmid: " : "phasmid (rank " + std::to_string(r) + "): ";
 }
 
@@ -33,10 +32,22 @@ std::string one_line(std::string s) {
   return s;
 }
 
-// A rank that fails while others may wait for it ends the whole MPI job.
-int failed(int code) {
+// How a run ends (docs/cluster.md "Messages and exit status"). `line` is the error ("" if none).
+// Without MPI: printed. Under MPI before any MPI work: the ranks agree, rank 0 prints the first
+// failure and every rank ends normally. After it: the failing rank prints; rank 0 ends normally
+// once it has released the workers, any other failure ends the whole job (MPI_Abort), since
+// other ranks may be waiting for this one.
+int finish(int code, const std::string& line) {
+  namespace dist = phasmid::dist;
+  if (dist::size() > 1 && !dist::agreed()) {
+    const dist::Agreement a = dist::agree(line, code);
+    if (dist::rank() == 0 && !a.all_ok) std::cerr << error_prefix(a.failed_rank) << a.message << "\n";
+    return a.all_ok ? code : a.code;
+  }
+  if (line.empty()) return code;
+  std::cerr << error_prefix() << line << "\n";
   std::cerr.flush();
-  if (phasmid::dist::size() > 1 && !phasmid::dist::workers_released()) phasmid::dist::abort_job(code);
+  if (dist::size() > 1 && !(dist::rank() == 0 && dist::workers_released())) dist::abort_job(code);
   return code;
 }
 }  // namespace
@@ -63,22 +74,21 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (phasmid::dist::rank() != 0) return e.get_exit_code();  // every rank parsed the same line: rank 0 says it
     return app.exit(e);
   }
   const std::string verb = app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name();
-  if (phasmid::dist::size() > 1 && verb != "sweep" && verb != "fit" && verb != "gsa") {  // every rank would write the same file
-    if (phasmid::dist::rank() == 0)
-      std::cerr << "phasmid: error: phasmid " << verb << " runs in one process; under mpirun only sweep, fit and gsa use "
-                << "several ranks (docs/cluster.md)\n";
-    return 1;
-  }
+  if (phasmid::dist::size() > 1 && verb != "sweep" && verb != "fit" && verb != "gsa")  // every rank would write the same file
+    return finish(1, "error: phasmid " + verb + " runs in one process; under mpirun only sweep, fit and gsa use "
+                     "several ranks (docs/cluster.md)");
   try {
-    return action ? action() : 1;
+    return finish(action ? action() : 1, "");
+  } catch (const phasmid::dist::JobStopped& e) {  // another rank failed before any work
+    if (phasmid::dist::rank() == 0) std::cerr << error_prefix(e.failed_rank) << e.message << "\n";
+    return e.code;
   } catch (const phasmid::Error& e) {
-    std::cerr << error_prefix() << "error: " << one_line(e.what()) << "\n";
-    return failed(1);
+    return finish(1, "error: " + one_line(e.what()));
   } catch (const std::exception& e) {
-    std::cerr << error_prefix() << "internal error: " << one_line(e.what()) << "\n";
-    return failed(2);
+    return finish(2, "internal error: " + one_line(e.what()));
   }
 }

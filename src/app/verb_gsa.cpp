@@ -33,7 +33,8 @@ bool sweep_already_done(const GsaArgs& a) {
 }
 
 int run(const GsaArgs& a) {
-  io::check_output_path(a.out, {a.config}, {sweep::Journal::path_for(a.out)});
+  io::check_output_path(a.out, {a.config},
+                        {sweep::Journal::path_for(a.out), config::sweep_file_for(a.out), config::sweep_file_for(a.out) + ".tmp"});
   // Rank 0, before OUT is read or its journal opened, held through the analysis step.
   const auto lock = lock_output(a.out);
   const config::GsaInputs in = config::gsa_inputs(config::load_config(a.config), a.sets);

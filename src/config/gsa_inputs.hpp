@@ -21,14 +21,21 @@ struct GsaInputs {
 // Errors name file:line ([gsa] keys, [[sweep.parameter]] ranges, unknown features).
 GsaInputs gsa_inputs(const Config& cfg, const std::vector<std::string>& sets);
 
-// After the sweep of `in` finished into `path`: reads its outputs, analyses every feature of
-// [gsa] and writes /gsa into the same file (atomically). Returns the result.
-gsa::GsaResult analyse_and_write(const GsaInputs& in, const std::string& path, const std::string& command);
+// Where `phasmid gsa` writes the complete sweep before its analysis: "<output>.sweep", deleted
+// once <output> (with /gsa) is written.
+std::string sweep_file_for(const std::string& output);
+
+// After the sweep of `in` finished into `sweep_path`: reads its outputs, analyses every feature
+// of [gsa] and writes /sweep, /parameters and /gsa to `path` (atomically; may be sweep_path).
+gsa::GsaResult analyse_and_write(const GsaInputs& in, const std::string& sweep_path, const std::string& path,
+                                 const std::string& command);
 
 // One `phasmid gsa` run, the verb's and phasmid.gsa()'s: unless `sweep_done` (the finished sweep
-// of this design is in o.output already), runs the design's sweep with `o`; when that sweep
-// completed on rank 0 (not a worker, not stopped), analyses it and writes /gsa into o.output
-// (command o.command).
+// of this design is in o.output already: checked with sweep::check_finished_sweep), runs the
+// design's sweep with `o` into sweep_file_for(o.output), keeping the journal; when that sweep
+// completed on rank 0 (not a worker, not stopped), analyses it, writes o.output with /gsa
+// (command o.command), and only then deletes the journal and the sweep file. A file named
+// o.output therefore always has /gsa.
 struct GsaOutcome {
   sweep::SweepOutcome sweep;  // default-constructed when sweep_done
   bool analysed = false;      // false: an MPI worker rank, or the sweep stopped (journal kept)

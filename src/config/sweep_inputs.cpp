@@ -1,5 +1,6 @@
 #include "config/sweep_inputs.hpp"
 
+#include "config/resume_spec.hpp"
 #include "config/sweep_section.hpp"
 
 #include "common/error.hpp"
@@ -16,6 +17,7 @@ sweep::SweepInputs sweep_inputs(const Config& cfg, const std::vector<std::string
   in.settings = simulation_settings(cfg, base.get());
   in.spec = design(cfg, base->parameters(), in.settings);
   in.resolved_config = resolved_config_text(cfg, sets);
+  in.resume_spec = resume_spec(cfg, base->parameters());
   in.config_text = cfg.text;
   in.config_path = cfg.path;
   in.sets = sets;

@@ -84,11 +84,14 @@ std::unique_ptr<Executor> make_openmp_executor(int threads) {
 }
 
 std::unique_ptr<Executor> make_executor(int threads) {
-  if (size() > 1) {
-    if (threads <= 0) threads = std::getenv("OMP_NUM_THREADS") ? omp_get_max_threads() : 1;
-    return make_mpi_executor(bounded_threads(threads));
+  if (size() == 1) return make_openmp_executor(threads);
+  // An Error here (one rank's environment may differ) comes before the agreement: one line.
+  const int n = threads > 0 ? bounded_threads(threads) : std::getenv("OMP_NUM_THREADS") ? bounded_threads(0) : 1;
+  if (!agreed()) {  // the ranks' first MPI work: all passed their checks, or none works
+    const Agreement a = agree("", 0);
+    if (!a.all_ok) throw JobStopped{a.code, a.message, a.failed_rank};
   }
-  return make_openmp_executor(threads);
+  return make_mpi_executor(n);
 }
 
 std::string format_work_summary(const std::vector<WorkerStats>& stats, const std::string& unit) {

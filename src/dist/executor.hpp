@@ -70,6 +70,12 @@ void release_workers();
 // since other ranks may be waiting for this one.
 bool workers_released();
 
+// From a signal handler (async-signal-safe): the MPI master stops handing out tasks and, instead
+// of waiting for the tasks in flight, tells the workers to stop and returns at once. Open MPI's
+// mpirun ends every rank soon after a Ctrl-C (SIGTERM, then SIGKILL): rank 0 must report and
+// keep its journal before that; the points in flight are recomputed by --resume.
+void abandon_in_flight();
+
 // Implementations (executor.cpp, mpi_executor.cpp).
 std::unique_ptr<Executor> make_openmp_executor(int threads);
 std::unique_ptr<Executor> make_mpi_executor(int threads);

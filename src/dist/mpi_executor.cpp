@@ -21,11 +21,21 @@
 #include "dist/bytes.hpp"
 #include "dist/session.hpp"
 
+#include <csignal>
+
+namespace phasmid::dist {
+namespace {
+volatile std::sig_atomic_t g_abandon = 0;
+}
+void abandon_in_flight() { g_abandon = 1; }
+}  // namespace phasmid::dist
+
 #ifdef PHASMID_WITH_MPI
 #include <mpi.h>
 
 namespace phasmid::dist {
 namespace {
+bool g_released = false;
 enum Tag : int { kReady = 1, kTask = 2, kResult = 3, kStop = 4 };
 
 // Sleeps between polls: 20 us doubling up to 2 ms; reset after each message.
@@ -107,6 +117,7 @@ std::vector<WorkerStats> MpiExecutor::master(const std::vector<Task>& tasks, con
   std::string bytes;
   while (ready < n - 1 || in_flight > 0) {
     if (!try_receive(MPI_ANY_SOURCE, source, tag, bytes)) {
+      if (g_abandon) break;  // interrupted: the workers are stopped below, their points redone on --resume
       backoff.sleep();
       continue;
     }
@@ -137,6 +148,7 @@ std::vector<WorkerStats> MpiExecutor::master(const std::vector<Task>& tasks, con
     hand_out(source);
   }
   for (int w = 1; w < n; ++w) send(w, kStop, {});
+  if (g_abandon) g_released = true;  // the workers stop now; main() need not end the job
   if (fatal) std::rethrow_exception(fatal);
   return stats;
 }
@@ -214,10 +226,6 @@ void MpiExecutor::worker(const Evaluate& evaluate) const {
 }  // namespace
 
 std::unique_ptr<Executor> make_mpi_executor(int threads) { return std::make_unique<MpiExecutor>(threads); }
-
-namespace {
-bool g_released = false;
-}
 
 void release_workers() {
   if (rank() != 0) return;

@@ -136,9 +136,21 @@ std::uint64_t little_endian(const char* p) {
 // 4 bytes). HDF5 allocates and clears `length` bytes before it reads the object, so a damaged
 // length makes it take up to 4 GB for a few-kB file. No string in a file is longer than the
 // file: a descriptor that names an object of a collection and declares more is refused.
+// A descriptor never lies inside a collection (phasmid writes no variable-length data nested in
+// variable-length data), but a collection's own bytes can look like one: a string's last bytes,
+// then an object header whose index, read as an address, is that of another collection (object
+// 2048 of a large collection and a collection at byte 2048). Those are not refused.
+bool inside_collection(RandomAccess& file, const std::map<std::uint64_t, Collection>& collections,
+                       std::uint64_t at, int length_width) {
+  auto c = collections.upper_bound(at);
+  if (c == collections.begin()) return false;
+  --c;
+  return at < c->first + file.uint(c->first + 8, length_width);  // walk_collections checked the size field fits
+}
+
 template <std::size_t kOffsetWidth>
 void check_descriptors(RandomAccess& file, const std::map<std::uint64_t, Collection>& collections,
-                       const std::string& path) {
+                       const std::string& path, int length_width) {
   constexpr std::size_t kSpan = 4 + kOffsetWidth + 4;
   const std::uint64_t lowest = collections.begin()->first, highest = collections.rbegin()->first;
   for_each_block(file, kSpan, [&](const char* b, std::size_t n, std::size_t own, std::uint64_t at) {
@@ -147,7 +159,8 @@ void check_descriptors(RandomAccess& file, const std::map<std::uint64_t, Collect
       const std::uint64_t address = little_endian<kOffsetWidth>(b + i + 4);
       if (length <= file.size() || address < lowest || address > highest) continue;
       const auto c = collections.find(address);
-      if (c != collections.end() && c->second.count(little_endian<4>(b + i + 4 + kOffsetWidth)))
+      if (c != collections.end() && c->second.count(little_endian<4>(b + i + 4 + kOffsetWidth)) &&
+          !inside_collection(file, collections, at + i, length_width))
         refuse(path, at + i, "a string declares " + std::to_string(length) + " bytes");
     }
   });
@@ -161,9 +174,9 @@ void check_global_heaps(const std::string& path) {
   const auto collections = walk_collections(file, length_width, path);
   if (collections.empty()) return;
   switch (offset_width) {
-    case 2: return check_descriptors<2>(file, collections, path);
-    case 4: return check_descriptors<4>(file, collections, path);
-    default: return check_descriptors<8>(file, collections, path);
+    case 2: return check_descriptors<2>(file, collections, path, length_width);
+    case 4: return check_descriptors<4>(file, collections, path, length_width);
+    default: return check_descriptors<8>(file, collections, path, length_width);
   }
 }
 

@@ -19,7 +19,10 @@
 // is left to HDF5, which reports those as errors. Not caught: a descriptor whose address is
 // damaged as well as its length (HDF5 still allocates the length before it fails on the
 // address). The scan may match inside numeric data; a match is refused only if it also has the
-// exact shape of the damage, which valid data does not have by chance in practice.
+// exact shape of the damage, which valid data does not have by chance in practice. Matches inside
+// a collection are not refused: its strings' tails and object headers can take that shape (in a
+// collection of more than 2048 objects with another collection at byte 2048), and no descriptor
+// lies there.
 #pragma once
 
 #include <hdf5.h>

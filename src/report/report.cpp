@@ -9,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 #include <unistd.h>
 
 #include "common/embedded.hpp"
@@ -585,8 +586,24 @@ std::string json_for_script(const nlohmann::json& j) {
   return out;
 }
 
+namespace {
+// A file of a verb whose result group is missing did not finish (e.g. a gsa file of an older
+// phasmid killed during its analysis, which left /sweep alone): refused, not drawn as if whole.
+void refuse_unfinished(const H5Reader& r, const std::string& h5_path) {
+  static const std::map<std::string, std::string> result_of = {{"gsa", "/gsa"}, {"continue", "/continuation"}, {"fit", "/fit"}};
+  std::istringstream words(root_attr(r, "command"));
+  std::string program, verb;
+  words >> program >> verb;
+  const auto it = result_of.find(verb);
+  if (it == result_of.end() || r.exists(it->second)) return;
+  throw Error(h5_path + ": a `phasmid " + verb + "` file without " + it->second + ": the run ended before its result was " +
+              "written" + (verb == "gsa" ? "; `phasmid gsa CONFIG -o " + h5_path + " --resume` analyses it" : ""));
+}
+}  // namespace
+
 nlohmann::json extract(const std::string& h5_path, std::size_t max_points) {
   H5Reader r(h5_path);  // throws phasmid::Error: no such file / not an HDF5 file
+  refuse_unfinished(r, h5_path);
   json out = json::object();
   out["source"] = std::filesystem::path(h5_path).filename().string();
   out["attrs"] = {{"phasmid_version", root_attr(r, "phasmid_version")},

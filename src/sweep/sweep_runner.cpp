@@ -25,6 +25,7 @@ extern "C" void on_stop_signal(int sig) {
     std::raise(sig);
   }
   g_stop_signal = sig;
+  dist::abandon_in_flight();  // under MPI: rank 0 reports before mpirun ends the ranks
 }
 
 // Installs the handlers for the lifetime of a run and restores the previous ones.
@@ -58,13 +59,17 @@ struct MasterJob {
 };
 
 // Opens (or resumes) the journal; on an MPI master, a refusal also ends the workers' wait.
-std::unique_ptr<Journal> open_journal(const MasterJob& job, const std::string& path) {
+// --resume of a finished file (no journal) first checks that the file is this sweep's.
+std::shared_ptr<Journal> open_journal(const MasterJob& job, const std::string& path) {
   try {
-    if (!job.opt.resume && std::filesystem::exists(path))
+    namespace fs = std::filesystem;
+    if (!job.opt.resume && fs::exists(path))
       throw Error(path + ": journal of an unfinished sweep; pass --resume to continue it, or delete it to start over");
-    std::uint64_t fingerprint = sweep_fingerprint(job.in.resolved_config, job.in.spec);
+    if (job.opt.resume && !job.opt.shard.active() && !fs::exists(path) && fs::exists(job.opt.output))
+      check_finished_sweep(job.opt.output, job.in);
+    std::uint64_t fingerprint = sweep_fingerprint(job.in.resume_spec, job.in.spec);
     if (job.opt.shard.active()) fingerprint = shard_fingerprint(fingerprint, job.opt.shard);
-    return std::make_unique<Journal>(path, fingerprint, job.in.spec.n_points, job.opt.resume);
+    return std::make_shared<Journal>(path, fingerprint, job.in.spec.n_points, job.opt.resume, job.in.resume_spec);
   } catch (...) {
     dist::release_workers();
     throw;
@@ -84,7 +89,8 @@ void write_result(const MasterJob& job, std::vector<std::optional<PointResult>>&
   std::vector<PointResult> all;
   all.reserve(results.size());
   for (auto& r : results) all.push_back(std::move(*r));
-  write_sweep_h5(job.opt.output, job.in.spec, all, job.base_parameters, job.base_p, info);
+  write_sweep_h5(job.opt.sweep_file.empty() ? job.opt.output : job.opt.sweep_file, job.in.spec, all,
+                 job.base_parameters, job.base_p, info, job.in.resume_spec);
 }
 
 // The point loop on the master: hands the missing points (of its shard) to the executor,
@@ -101,7 +107,7 @@ SweepOutcome run_master(const MasterJob& job, dist::Executor& exec, const dist::
     dist::release_workers();
     throw;
   }
-  std::unique_ptr<Journal> journal = open_journal(job, out.journal);
+  std::shared_ptr<Journal> journal = open_journal(job, out.journal);
   std::vector<std::optional<PointResult>> results(spec.n_points);
   for (auto& [i, r] : journal->recovered()) results[i] = r;
   out.n_recovered = journal->recovered().size();
@@ -141,7 +147,8 @@ SweepOutcome run_master(const MasterJob& job, dist::Executor& exec, const dist::
     return out;
   }
   write_result(job, results);
-  journal->close_and_remove();
+  if (opt.keep_journal) out.kept_journal = journal;
+  else journal->close_and_remove();
   out.complete = true;
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - job.wall0).count();
   return out;
@@ -219,6 +226,7 @@ SweepOutcome run_sweep(const SweepInputs& in, const SweepOptions& opt) {
     return encode_record(t.id, evaluate_point(*models[slot][c], combo_p[c], combo_swept[c], spec, t.id, so));
   };
   if (!exec->is_master()) {  // an MPI worker: evaluate what rank 0 hands out, write nothing
+    SignalGuard signals(opt.handle_signals);  // a Ctrl-C is rank 0's to report: serve until it says stop
     exec->run({}, evaluate, {}, {});
     out.worker = true;
     return out;

@@ -29,6 +29,11 @@ struct SweepOptions {
   bool progress = true;           // progress bar on a terminal
   bool handle_signals = false;    // SIGINT/SIGTERM finish the running points, then stop resumably
   std::string command;            // for the `command` attribute
+  // Where the complete sweep is written ("" = output), and whether the journal outlives the
+  // run: `phasmid gsa` writes its sweep apart and keeps the journal (and its lock) until /gsa
+  // is in the final file, so that no file named OUT ever lacks /gsa.
+  std::string sweep_file;
+  bool keep_journal = false;
 };
 
 struct SweepOutcome {
@@ -45,16 +50,19 @@ struct SweepOutcome {
   bool worker = false;           // this rank was an MPI worker: nothing written, nothing to report
   double wall_seconds = 0;
   std::string output, journal;
+  std::shared_ptr<Journal> kept_journal;  // with keep_journal: still open and locked
 };
 
 // What a sweep runs: the design, a factory of the scenario of each option combination
 // (spec.options; called serially, once per combination and thread), how to run each point,
-// and the resolved config text (the journal's fingerprint and the file's `config` attribute).
+// the resolved config text (the file's `config` attribute) and the resume spec
+// (config/resume_spec.hpp: the journal's fingerprint and the file's /sweep `resume_spec`).
 struct SweepInputs {
   SweepSpec spec;
   std::function<std::unique_ptr<scenario::Scenario>(std::size_t combo)> make;
   scenario::RunSettings settings;
   std::string resolved_config;
+  std::string resume_spec;
   // The config as read and the --set overrides: a shard file keeps them for `phasmid merge`.
   std::string config_text, config_path;
   std::vector<std::string> sets;

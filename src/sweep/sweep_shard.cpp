@@ -150,7 +150,7 @@ void write_shard_h5(const std::string& output, const SweepInputs& in, const Shar
   if (!records.empty()) w.write("/sweep_shard/records", records);
   w.write("/sweep_shard/config_text", std::vector<std::string>{in.config_text});
   if (!in.sets.empty()) w.write("/sweep_shard/sets", in.sets);
-  w.set_attribute("/sweep_shard", "fingerprint", hex64(sweep_fingerprint(in.resolved_config, in.spec)));
+  w.set_attribute("/sweep_shard", "fingerprint", hex64(sweep_fingerprint(in.resume_spec, in.spec)));
   w.set_attribute("/sweep_shard", "config_path", in.config_path);
   w.set_attribute("/sweep_shard", "shard", static_cast<double>(shard.index));
   w.set_attribute("/sweep_shard", "shards", static_cast<double>(shard.count));
@@ -167,7 +167,7 @@ MergeOutcome merge_shards(const std::vector<std::string>& parts, const std::stri
   // The design and base parameters come from the config the shards ran, as in `phasmid sweep`.
   const SweepInputs in = shard_inputs(first);
   const SweepSpec& spec = in.spec;
-  if (hex64(sweep_fingerprint(in.resolved_config, spec)) != first.fingerprint)
+  if (hex64(sweep_fingerprint(in.resume_spec, spec)) != first.fingerprint)
     throw Error(first.path + ": its config no longer gives the sweep it was run with (another phasmid version?)");
   std::vector<std::optional<PointResult>> results(spec.n_points);
   MergeOutcome out;
@@ -185,7 +185,7 @@ MergeOutcome merge_shards(const std::vector<std::string>& parts, const std::stri
   for (auto& r : results) all.push_back(std::move(*r));
   const auto base = in.make(0);
   try {
-    write_sweep_h5(output, spec, all, base->parameters(), base->parameters().values(), {in.resolved_config, command});
+    write_sweep_h5(output, spec, all, base->parameters(), base->parameters().values(), {in.resolved_config, command}, in.resume_spec);
   } catch (const Error& e) {  // HDF5's messages name the object; say which file it was
     const std::string what = e.what();
     if (what.find(output) != std::string::npos) throw;

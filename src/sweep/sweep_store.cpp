@@ -18,10 +18,11 @@
 #include "common/error.hpp"
 #include "io/trajectory_writer.hpp"
 #include "sweep/ranges.hpp"
+#include "sweep/sweep_runner.hpp"
 
 namespace phasmid::sweep {
 namespace {
-constexpr const char* kMagic = "phasmid-sweep-journal 1";
+constexpr const char* kMagic = "phasmid-sweep-journal 2";  // 2: the spec in the header
 
 std::string hex64(std::uint64_t v) {
   char buf[17];
@@ -64,8 +65,40 @@ void write_all(int fd, const std::string& s, const std::string& path) {
   }
 }
 
-std::string header_line(std::uint64_t fingerprint, std::size_t n_points) {
-  return std::string(kMagic) + " fingerprint=" + hex64(fingerprint) + " n_points=" + std::to_string(n_points);
+// One line: the spec as a JSON string (ensure_ascii: its line breaks and any byte escaped).
+std::string header_line(std::uint64_t fingerprint, std::size_t n_points, const std::string& spec) {
+  return std::string(kMagic) + " fingerprint=" + hex64(fingerprint) + " n_points=" + std::to_string(n_points) +
+         " spec=" + nlohmann::json(spec).dump(-1, ' ', true, nlohmann::json::error_handler_t::replace);
+}
+
+// Why a journal's header is not this sweep's: the first spec key that differs, else the design.
+std::string header_mismatch(const std::string& header, const std::string& spec) {
+  const std::string what = "journal belongs to a different sweep";
+  const std::string tail = "; delete it to start over";
+  const auto at = header.find(" spec=");
+  std::string old;
+  try {
+    if (at != std::string::npos) old = nlohmann::json::parse(header.substr(at + 6)).get<std::string>();
+  } catch (const std::exception&) {
+    return what + " (its header is damaged)" + tail;
+  }
+  if (at == std::string::npos) return what + " (its header has no spec)" + tail;
+  const std::string diff = spec_difference(old, spec, "in the journal");
+  if (!diff.empty()) return what + ": the config differs from the one it was started with (" + diff + ")" + tail;
+  return what + " (the same config, other design points or point count: another phasmid version?)" + tail;
+}
+
+// "key = value" lines of a spec, in order.
+std::vector<std::pair<std::string, std::string>> spec_lines(const std::string& spec) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (std::size_t at = 0, end; at < spec.size(); at = end + 1) {
+    end = spec.find('\n', at);
+    if (end == std::string::npos) end = spec.size();
+    const std::string line = spec.substr(at, end - at);
+    const auto eq = line.find(" = ");
+    if (eq != std::string::npos) out.emplace_back(line.substr(0, eq), line.substr(eq + 3));
+  }
+  return out;
 }
 }  // namespace
 
@@ -77,8 +110,8 @@ std::uint64_t fnv1a(const std::string& bytes, std::uint64_t h) {
   return h;
 }
 
-std::uint64_t sweep_fingerprint(const std::string& resolved_config, const SweepSpec& spec) {
-  std::string s = resolved_config;
+std::uint64_t sweep_fingerprint(const std::string& resume_spec, const SweepSpec& spec) {
+  std::string s = resume_spec;
   s += "\n#design " + spec.design_name + " seed " + std::to_string(spec.seed);
   s += "\n#t " + hexfloat(spec.t_end_ms) + " " + hexfloat(spec.discard_ms);
   for (auto& p : spec.parameters) s += "\n#p " + p.name;
@@ -89,6 +122,34 @@ std::uint64_t sweep_fingerprint(const std::string& resolved_config, const SweepS
   s += "\n#x";
   for (double x : spec.points) s += " " + hexfloat(x);
   return fnv1a(s);
+}
+
+std::string spec_difference(const std::string& old_spec, const std::string& new_spec, const std::string& then) {
+  const auto before = spec_lines(old_spec), now = spec_lines(new_spec);
+  std::map<std::string, std::string> old_value(before.begin(), before.end()), new_value(now.begin(), now.end());
+  for (auto& [key, value] : now) {
+    auto it = old_value.find(key);
+    if (it == old_value.end()) return key + ": not set " + then + ", " + value + " now";
+    if (it->second != value) return key + ": " + it->second + " " + then + ", " + value + " now";
+  }
+  for (auto& [key, value] : before)
+    if (!new_value.count(key)) return key + ": " + value + " " + then + ", not set now";
+  return "";
+}
+
+void check_finished_sweep(const std::string& output, const SweepInputs& in) {
+  io::H5Reader r(output);
+  const std::string fresh = "; delete it or write to another -o to start over";
+  if (!r.exists("/sweep"))
+    throw Error(output + ": --resume without a journal needs a finished sweep file, and this one has no /sweep" + fresh);
+  if (!r.has_attribute("/sweep", "resume_spec")) {  // an older phasmid's file: only the very same config text
+    if (r.has_attribute("/", "config") && r.read_string_attribute("/", "config") == in.resolved_config) return;
+    throw Error(output + ": made by an older phasmid without a resume fingerprint, with another config text" + fresh);
+  }
+  const std::string diff = spec_difference(r.read_string_attribute("/sweep", "resume_spec"), in.resume_spec, "in " + output);
+  if (!diff.empty()) throw Error("the config differs from the one " + output + " was made with (" + diff + ")" + fresh);
+  if (r.read_string_attribute("/sweep", "resume_fingerprint") != hex64(sweep_fingerprint(in.resume_spec, in.spec)))
+    throw Error(output + ": its design points differ from this config's ([gsa] or [sweep] design changed)" + fresh);
 }
 
 std::string encode_record(std::size_t index, const PointResult& r) {
@@ -127,10 +188,11 @@ bool decode_record(const std::string& line, std::size_t& index, PointResult& r) 
   return true;
 }
 
-Journal::Journal(const std::string& path, std::uint64_t fingerprint, std::size_t n_points, bool resume)
+Journal::Journal(const std::string& path, std::uint64_t fingerprint, std::size_t n_points, bool resume,
+                 const std::string& spec)
     : path_(path) {
   namespace fs = std::filesystem;
-  const std::string header = header_line(fingerprint, n_points);
+  const std::string header = header_line(fingerprint, n_points, spec);
   if (resume && fs::exists(path)) {
     fd_ = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
     if (fd_ < 0) throw Error(path + ": cannot open journal for appending: " + std::strerror(errno));
@@ -151,9 +213,7 @@ Journal::Journal(const std::string& path, std::uint64_t fingerprint, std::size_t
       if (first) {
         first = false;
         if (!complete || line.rfind(kMagic, 0) != 0) fail("not a phasmid sweep journal");
-        if (line != header)
-          fail("journal belongs to a different sweep (the config, --set values or [sweep] changed since it was "
-               "started); delete it to start over");
+        if (line != header) fail(header_mismatch(line, spec));
         good_end = pos;
         continue;
       }
@@ -227,7 +287,7 @@ void Journal::close_and_remove() {
 
 void write_sweep_h5(const std::string& output, const SweepSpec& spec, const std::vector<PointResult>& results,
                     const model::ParameterSet& parameters, const std::vector<double>& base_parameters,
-                    const io::RunInfo& info) {
+                    const io::RunInfo& info, const std::string& resume_spec) {
   const std::size_t n = spec.n_points, dim = spec.parameters.size();
   if (results.size() != n) throw Error("internal: sweep results incomplete");
 
@@ -278,6 +338,8 @@ void write_sweep_h5(const std::string& output, const SweepSpec& spec, const std:
   w.set_attribute("/sweep", "n_failed", static_cast<double>(n_failed));
   w.set_attribute("/sweep", "t_end_ms", spec.t_end_ms);
   w.set_attribute("/sweep", "discard_ms", spec.discard_ms);
+  w.set_attribute("/sweep", "resume_spec", resume_spec);
+  w.set_attribute("/sweep", "resume_fingerprint", hex64(sweep_fingerprint(resume_spec, spec)));
   if (!spec.range_feature.empty()) {
     auto it = column.find(spec.range_feature);
     std::vector<double> none(n, std::numeric_limits<double>::quiet_NaN());

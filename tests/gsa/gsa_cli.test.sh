@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # phasmid gsa on the sweep engine (docs/gsa.md): an analysis stopped part-way (--stop-after) or
 # killed with SIGKILL and then resumed with --resume writes the same /sweep and /gsa, bit for
-# bit, as the uninterrupted run; --resume of a finished file repeats only the analysis; bad
+# bit, as the uninterrupted run; --resume of a finished file repeats only the analysis, and is
+# refused (like a journal's) when a model parameter or --set changed; a kill during the analysis
+# leaves no OUT without /gsa; bad
 # [gsa] sections are one-line errors naming file:line. Usage: gsa_cli.test.sh PHASMID SOURCE_DIR
 set -u
 PHASMID="$1"; SRC="$2"
@@ -43,6 +45,24 @@ rm -f n16.h5 resolved.h5
 "$PHASMID" gsa small.toml -o full.h5 --resume >out 2>err && grep -q "^y (1): 1024 of 1024 base rows used" out && ok \
   || bad "--resume of a finished file re-analyses it ($(cat err))"
 
+# --resume compares everything that determines the result (docs/gsa.md, docs/sweep.md "Interrupting
+# and resuming"): a changed model parameter or --set is refused for a finished file and for a
+# journal, naming it, and nothing is written; another -j is no change.
+sed 's/^a = 7.0/a = 0.0/' small.toml >a0.toml
+before=$(h5dump -a /config full.h5 | md5sum)
+expect_error "finished file, a changed" "the config differs from the one full.h5 was made with (model parameter a: 7 in full.h5, 0 now)" \
+  "$PHASMID" gsa a0.toml -o full.h5 --resume -q
+expect_error "finished file, --set b=0.5" "(model parameter b: 0.1 in full.h5, 0.5 now)" "$PHASMID" gsa small.toml -o full.h5 --resume -q --set b=0.5
+[ "$(h5dump -a /config full.h5 | md5sum)" = "$before" ] && [ ! -e full.h5.tmp ] && ok || bad "a refused resume touched full.h5"
+"$PHASMID" gsa small.toml -o j.h5 -q -j 2 --stop-after 500 2>/dev/null
+expect_error "journal, a changed" "journal belongs to a different sweep: the config differs from the one it was started with (model parameter a: 7 in the journal, 0 now)" \
+  "$PHASMID" gsa a0.toml -o j.h5 --resume -q
+expect_error "journal, --set b=0.5" "(model parameter b: 0.1 in the journal, 0.5 now)" "$PHASMID" gsa small.toml -o j.h5 --resume -q --set b=0.5
+[ ! -e j.h5 ] && [ "$(($(wc -l <j.h5.journal) - 1))" -eq 500 ] && ok || bad "a refused resume changed the journal or wrote j.h5"
+"$PHASMID" gsa small.toml -o j.h5 -q -j 1 --resume && same "resumed with another -j" full.h5 j.h5
+sed 's/^bootstrap = 200/bootstrap = 100/' small.toml >boot.toml
+"$PHASMID" gsa boot.toml -o j.h5 -q --resume && ok || bad "another [gsa] bootstrap count does not re-analyse a finished file"
+
 # SIGKILL part-way through the sweep; the journal keeps every finished point
 "$PHASMID" gsa large.toml -o large_full.h5 -q -j 1 || bad "uninterrupted large run"
 "$PHASMID" gsa large.toml -o k.h5 -q -j 1 &
@@ -59,6 +79,22 @@ kill -9 $pid; wait $pid 2>/dev/null
 kept=$(($(wc -l <k.h5.journal) - 1))
 [ ! -e k.h5 ] && [ "$kept" -ge 20000 ] && [ "$kept" -lt 131072 ] && ok || bad "kill -9: $kept points journalled, k.h5 $( [ -e k.h5 ] && echo exists || echo absent)"
 "$PHASMID" gsa large.toml -o k.h5 -q -j 2 --resume 2>err && same "killed and resumed" large_full.h5 k.h5 || bad "resume after kill: $(cat err)"
+
+# Killed during the analysis: the sweep is complete in k2.h5.sweep and the journal, and k2.h5 does not
+# exist until it holds /gsa. Killed as soon as k2.h5.sweep appears; had the run already ended, k2.h5
+# must be complete. Either way --resume gives the uninterrupted file.
+"$PHASMID" gsa large.toml -o k2.h5 -q -j 2 &
+pid=$!
+until [ -e k2.h5.sweep ] || ! kill -0 $pid 2>/dev/null; do sleep 0.01; done
+kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
+if [ -e k2.h5 ]; then
+  h5dump -H -g /gsa k2.h5 >/dev/null 2>&1 && [ ! -e k2.h5.journal ] && ok || bad "k2.h5 without /gsa, or with its journal"
+else
+  [ -e k2.h5.journal ] && ok || bad "killed in the analysis: no k2.h5 and no journal"
+  expect_error "report of the unfinished analysis" "k2.h5: no such file" "$PHASMID" report k2.h5
+fi
+"$PHASMID" gsa large.toml -o k2.h5 -q --resume 2>err && same "killed in the analysis and resumed" large_full.h5 k2.h5 || bad "resume after a kill in the analysis: $(cat err)"
+[ ! -e k2.h5.sweep ] && [ ! -e k2.h5.journal ] && ok || bad "k2.h5.sweep or the journal left after the resume"
 
 # errors name file:line and the key
 sed 's/^features = \["y"\]/features = ["yy"]/' small.toml >feat.toml

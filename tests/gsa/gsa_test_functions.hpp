@@ -72,7 +72,7 @@ inline phasmid::gsa::GsaResult run_gsa(const phasmid::config::Config& cfg, const
   phasmid::sweep::SweepOptions o;
   o.output = path, o.threads = threads, o.progress = false;
   if (!phasmid::sweep::run_sweep(in.sweep, o).complete) throw phasmid::Error("test sweep did not complete");
-  phasmid::config::analyse_and_write(in, path, "test");
+  phasmid::config::analyse_and_write(in, path, path, "test");
   return phasmid::gsa::read_gsa_h5(phasmid::io::H5Reader(path));
 }
 
