@@ -71,7 +71,7 @@ mcase s-values-empty "c.toml:[0-9]+: " "sed 's/^values = .*/values = []/' sweep.
 mcase s-sweep-unknown-parameter "c.toml:[0-9]+: .*middle.fti.nope" "sed 's/^name = .*/name = \"middle.fti.nope\"/' sweep.toml >c.toml" sweep c.toml -o out.h5
 mcase s-range-reversed "c.toml:[0-9]+: " "sed 's/^values = .*/lower = 20.0\nupper = 10.0\nsteps = 3/' sweep.toml >c.toml" sweep c.toml -o out.h5
 mcase s-design-unknown "c.toml:[0-9]+: design must be" "sed 's/^design = .*/design = \"nope\"/' sweep.toml >c.toml" sweep c.toml -o out.h5
-mcase s-threads-huge "at most 256" ":" sweep sweep.toml -o out.h5 -j 100000
+mcase s-threads-huge "not in range 0 to 256" ":" sweep sweep.toml -o out.h5 -j 100000
 mcase s-shard-bad "--shard" ":" sweep sweep.toml -o out.h5 --shard 5/2
 mcase s-unknown-option "bogus" ":" sweep sweep.toml -o out.h5 --bogus
 mcase s-output-directory "out.h5.*directory" "mkdir out.h5" sweep sweep.toml -o out.h5

@@ -200,10 +200,16 @@ def test_save_to_a_fifo_is_refused_without_blocking(isl, tmp_path):
     assert "a fifo" in one_line(e, "f.h5")
 
 
-def test_save_into_a_missing_directory_names_the_path(isl, tmp_path):
+def test_save_into_a_missing_directory_creates_it_as_the_cli_does(isl, tmp_path):
+    isl.sweep.save(tmp_path / "no" / "x.h5")
+    assert listing(tmp_path) == ["no", "no/x.h5"]
+
+
+def test_save_below_a_regular_file_names_the_path(isl, tmp_path):
+    (tmp_path / "f").write_bytes(b"a file, not a directory")
     with Unchanged(tmp_path), pytest.raises(phasmid.Error) as e:
-        isl.sweep.save(tmp_path / "no" / "x.h5")
-    one_line(e, tmp_path / "no" / "x.h5")
+        isl.sweep.save(tmp_path / "f" / "x.h5")
+    one_line(e, tmp_path / "f" / "x.h5")
 
 
 def test_a_good_save_replaces_a_regular_file_and_leaves_no_tmp(isl, tmp_path):
