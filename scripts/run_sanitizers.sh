@@ -21,13 +21,14 @@ SANITIZER_EXES="test_h5_file test_h5_heap_check test_input_output_checks test_tr
   test_sweep_run test_sweep_design test_gsa_h5 test_gsa_resolution test_report test_features
   test_feature_catalogue test_model_kinds test_executor test_fit_inputs test_fit_h5
   test_cruse1980_config test_simroach2_config test_interrupt test_command_schedule
-  test_dopri_session test_continuation"
+  test_dopri_session test_continuation test_output_lock test_sweep_resume"
 # Tests left out of the executables that are built: the browser renderings (Chromium is not
 # instrumented and dominates their time), the examples test (replaced by the shortened
-# examples below), MPI (build-asan has none), the demo and the GSA command-line test (minutes
-# of simulation under ASan; the Release suite runs them), and the long runs among the
+# examples below), MPI (build-asan has none), the demo, the GSA command-line test and the two
+# writers' pairs (minutes of simulation under ASan; the Release suite runs them; the lock's own
+# tests run here), and the long runs among the
 # trajectory-stream comparisons.
-SLOW_TESTS='ReportRender\.|script_configs|script_demo|script_mpi|script_gsa_cli|_NOT_BUILT'
+SLOW_TESTS='ReportRender\.|script_configs|script_demo|script_mpi|script_gsa_cli|script_writers|_NOT_BUILT'
 SLOW_TESTS+='|TrajectoryStream\.(CurveWalkingBodyPath|TriggeredCommandsPartitioned|ThreeLegsSixLegPatternPartitioned)'
 
 source scripts/sanitizer_build.sh

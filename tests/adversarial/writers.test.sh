@@ -111,8 +111,8 @@ for job in simulate sweep gsa gsa_resume continue; do
 done
 
 # A --resume while a plain gsa is in its analysis step (held there by SIGSTOP): refused, and the
-# held run then finishes with the uncontended output. The sign of the analysis step: OUT exists
-# (the sweep's file is renamed into place before the analysis) while the run is still going.
+# held run then finishes with the uncontended output. The sign of the analysis step: the
+# complete sweep's file OUT.sweep exists (written before the analysis; OUT comes after it).
 # N = 16384: 131072 points, then an analysis (bootstrap and convergence subsets) of many polls.
 sed 's/^N = 8192/N = 16384/' "$SRC/configs/gsa_ishigami.toml" >big.toml
 rm -rf held; mkdir -p held ref/held
@@ -120,7 +120,7 @@ rm -rf held; mkdir -p held ref/held
 "$PHASMID" gsa big.toml -o held/out.h5 -q -j 1 2>held/err.1 & pid=$!
 end=$((SECONDS + HANG_SECONDS)); caught=0
 while kill -0 $pid 2>/dev/null && [ $SECONDS -lt $end ]; do
-  if [ -e held/out.h5 ]; then kill -STOP $pid; caught=1; break; fi
+  if [ -e held/out.h5.sweep ]; then kill -STOP $pid; caught=1; break; fi
   sleep 0.01
 done
 if [ $caught -eq 1 ]; then
