@@ -124,7 +124,9 @@ ctrl_c() {
     sleep 0.02
   done
   kill -INT $launcher; wait $launcher; local rc=$?
-  local ours; ours=$(grep -vE "$openmpi_lines" c.err)
+  # On SIGINT, mpirun's event library may also warn about a descriptor it closed while
+  # tearing the job down ("[warn] Epoll MOD(1) on fd N failed ..."): Open MPI's line, not ours.
+  local ours; ours=$(grep -vE "$openmpi_lines|^\[warn\] Epoll [A-Z]+\([0-9]+\) on fd [0-9]+ failed" c.err)
   [ $rc -ne 0 ] && [ "$(printf '%s\n' "$ours" | grep -c .)" -eq 1 ] && [ ! -e c.h5 ] && [ -s c.h5.journal ] &&
     printf '%s\n' "$ours" | grep -qE "^phasmid $verb: interrupted with [0-9]+ of $points $what done \(kept in c.h5.journal\); continue with: mpirun \.\.\. phasmid $verb $cfg -o c.h5 --resume$" \
     && ok || bad "Ctrl-C during $verb: rc=$rc, stderr: $(head -c 600 c.err)"
