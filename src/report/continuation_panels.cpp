@@ -1,9 +1,10 @@
-#include "report/continuation_panels.hpp"
+#include "report/panels.hpp"
 
 #include <cmath>
 
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
+#include "report/panel_common.hpp"
 
 namespace phasmid::report {
 namespace {
@@ -13,14 +14,6 @@ json numbers(const std::vector<double>& v) {
   json a = json::array();
   for (double x : v) a.push_back(std::isfinite(x) ? json(x) : json());
   return a;
-}
-
-std::string units(const io::H5Reader& r, const std::string& path) {
-  try {
-    return r.read_string_attribute(path, "units");
-  } catch (const Error&) {
-    return "";
-  }
 }
 
 // Rows of an N x M dataset as N arrays.
@@ -62,7 +55,7 @@ void extract_continuation(const io::H5Reader& r, json& out) {
   const size_t n = par.size();
   json c;
   c["parameter"] = r.read_string_attribute(g, "parameter");
-  c["parameter_units"] = units(r, g + "/parameter");
+  c["parameter_units"] = units_of(r, g + "/parameter");
   c["end"] = r.read_string_attribute(g, "end");
   try {  // only in the OUT.partial file of a run still going (docs/continuation.md)
     c["partial"] = r.read_string_attribute(g, "partial");
@@ -77,7 +70,7 @@ void extract_continuation(const io::H5Reader& r, json& out) {
   if (r.exists(g + "/features"))
     for (const auto& f : r.children(g + "/features")) {
       const std::string p = g + "/features/" + f;
-      c["features"].push_back({{"name", f}, {"units", units(r, p)}, {"values", numbers(r.read_doubles(p))}});
+      c["features"].push_back({{"name", f}, {"units", units_of(r, p)}, {"values", numbers(r.read_doubles(p))}});
     }
   c["multipliers_abs"] = rows(r, g + "/multipliers_abs", n);
   c["multipliers_real"] = rows(r, g + "/multipliers_real", n);

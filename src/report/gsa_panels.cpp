@@ -1,4 +1,4 @@
-#include "report/gsa_panels.hpp"
+#include "report/panels.hpp"
 
 #include <cmath>
 
