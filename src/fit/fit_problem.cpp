@@ -86,6 +86,19 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
         throw Error(k.origin + ": time offset parameter '" + k.time_offset_parameter + "' is also a model parameter");
       offset_ids.insert(k.time_offset_parameter);
     }
+  check_parameters(offset_ids);
+  map_estimates(offset_ids);
+  if (est_.empty()) throw Error("no parameter is estimated (set estimate = 1 for at least one)");
+
+  // Parameters that move switch times or set the initial state are exact too: the solver
+  // applies the jump conditions and s(0) = dy0/dp (docs/sensitivity.md).
+  label_targets();
+}
+
+// Each parameter given once, inside its model parameter's admissible range, naming model
+// parameters no other id names; fixed ones set in base_p_.
+void FitProblem::check_parameters(const std::set<std::string>& offset_ids) {
+  const auto& ps = model_.parameters();
   std::set<std::string> seen;
   std::map<size_t, std::string> claimed;  // model parameter -> the id that names it
   for (auto& fp : params_) {
@@ -114,6 +127,12 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
       }
     }
   }
+}
+
+// Per estimated parameter: the model parameters it sets and their sensitivity columns, or a
+// kinematic target's time offset.
+void FitProblem::map_estimates(const std::set<std::string>& offset_ids) {
+  const auto& ps = model_.parameters();
   for (auto& fp : params_) {
     if (!fp.estimate) continue;
     EstMap e{false, {}, {}};
@@ -128,12 +147,10 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
     est_.push_back(fp);
     est_map_.push_back(e);
   }
-  if (est_.empty()) throw Error("no parameter is estimated (set estimate = 1 for at least one)");
+}
 
-  // Parameters that move switch times or set the initial state are exact too: the solver
-  // applies the jump conditions and s(0) = dy0/dp (docs/sensitivity.md).
-
-  // Targets: validate and label residuals.
+// Targets: validate and label residuals.
+void FitProblem::label_targets() {
   std::set<std::string> feats, values_only;
   target_features(model_, feats, values_only);
   for (auto& f : targets_.features) {

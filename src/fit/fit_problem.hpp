@@ -5,6 +5,7 @@
 // and their exact Jacobian with respect to the scaled parameters x. Cost = 1/2 sum r^2.
 #include <atomic>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,10 @@ class FitProblem : public ResidualProblem {
  private:
   struct Run;
   Run run(const double* x, bool with_sens) const;
+  // The constructor's steps, in order; each throws Error on what it rejects.
+  void check_parameters(const std::set<std::string>& offset_ids);
+  void map_estimates(const std::set<std::string>& offset_ids);
+  void label_targets();
 
   const model::OdeModel& model_;
   Targets targets_;

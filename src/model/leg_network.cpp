@@ -47,32 +47,12 @@ Condition below(size_t state, size_t thr, size_t width) { return {Condition::Ang
 Condition above(size_t state, size_t thr, size_t width) { return {Condition::AngleAbove, state, thr, width}; }
 Condition after(size_t t) { return {Condition::TimeAfter, 0, t, 0}; }
 Condition before(size_t t) { return {Condition::TimeBefore, 0, t, 0}; }
-}  // namespace
 
-// One leg's parameters, neurons, synapses and sensory couplings, declared in one sequence: this
-// function is longer than the others because the order of its declarations is the order of the
-// leg's states and parameters in every output file and saved config (docs/hdf5.md), and each
-// block reads indices declared by the blocks before it; split, that order would live in the
-// call sequence of several functions instead of one list that reads like docs/model.md's.
-LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::string& leg, const LegOptions& o) {
-  Def def{m};
-  LegNetwork L;
-  L.leg = leg;
-  auto mid = [&](JointType t) {
-    JointTable tab = joint_table(leg, t, t == JointType::Thc ? o.thc_set : "");
-    return 0.5 * (tab.angle_min_deg + tab.angle_max_deg);
-  };
-  // Order PR, LD, FE as in Fig. 2.13 (top to bottom).
-  L.pr = add_joint_network(m, c, leg, JointType::Thc, mid(JointType::Thc), o.thc_set,
-                           o.direction_switch ? CpgToIn::Both : CpgToIn::Parallel);
-  // LD starts levated (swing): without CS input the levator is active (Section 2.5.3).
-  JointTable ctr = joint_table(leg, JointType::Ctr);
-  L.ld = add_joint_network(m, c, leg, JointType::Ctr, ctr.angle_max_deg);
-  L.fe = add_joint_network(m, c, leg, JointType::Fti, mid(JointType::Fti), "",
-                           o.crossed_fe ? CpgToIn::Crossed : CpgToIn::Parallel);
-  L.beta_state = m.joints()[L.ld.joint].angle_state;
-  L.gamma_state = m.joints()[L.fe.joint].angle_state;
-
+// The sensory couplings of one leg (Section 3.2): ground contact (beta) and the fCO (gamma)
+// gate the sensory IN drives, the CS input switches the LD system on, and the IN -> IN
+// excitations carry the sensory INs' activity on.
+void add_sensory_coupling(NetworkModel& m, const NeuronClasses& c, Def& def, LegNetwork& L, const LegOptions& o) {
+  const std::string& leg = L.leg;
   const std::string pre = leg + ".coupling.";
   L.beta_thr_pr = def(pre + "beta_thr_pr", 38, "deg", k32, "beta below this: ground contact, PR sensory IN excited");
   // The retractor CPG (Figs. 3.20-3.22 plot it against beta) counts as active above the
@@ -139,145 +119,179 @@ LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::s
   set_in_in(L.ld.syn_sens, "g_incs_in7", 0.1,
             std::string(kChoice) + ": Table A.4 lists no IN -> IN class; its excitatory IN -> CPG value (0.5 nS: tonic IN7, LD 522 ms)",
             "maximal conductance of the INCS -> IN7 excitation (LD system)");
+}
 
-  if (o.ld_release_ms >= 0) {
-    // "central inhibition of the levator CPG neuron in the respective leg, i.e. forcing the
-    // depressor CPG neuron to be active and then resetting the CPG at proper times" (2.5.4).
-    const std::string h = leg + ".ld_hold.";
-    NapIdx q = c.sens_inh;
-    q.E_app = m.parameters().index("interneuron.excitatory.E_app");
-    size_t drive = def(h + "drive", 5.0, "nS", kChoice, "central drive of the levator-inhibiting command neuron while holding", 0);
-    size_t zero = def(h + "off", 0.0, "nS", kChoice, "its drive when released", 0);
-    q.g_app = drive;
-    size_t hold = m.add_nap_neuron(leg + ".ld_hold", q, -30, 0.3);
-    SynapseIdx si = command_inhibition_synapse(def);
-    m.add_synapse(hold, L.ld.cpg_inc, si);
-    if (o.ld_hold_g_pr > 0) {
-      // The PR system is a reflex chain, "not active in the absence of the (excitatory)
-      // peripheral input" (Section 2.5.3), but phasmid's PR CPG oscillates on its own (633 ms
-      // at IN4 = 0.60 nS) and, with the held leg at beta ~ 40 deg (just above beta_thr_pr),
-      // would run freely through the hold: its phase at the release would depend on the release
-      // time, and a leg released in the PR's protraction phase would retract during its first
-      // swing, protract during its first stance and need up to four more steps to retract in
-      // stance (an apparent "second locking" of curve walking). The hold neuron therefore
-      // silences both PR CPGs until the leg's start time, so every leg starts its PR from the
-      // same state. docs/walking_model.md, "Curve walking".
-      SynapseIdx sp = si;
-      sp.g = def(h + "g_pr", o.ld_hold_g_pr, "nS",
-                 o.ld_hold_g_pr_source.empty() ? std::string(kChoice) : o.ld_hold_g_pr_source,
-                 "inhibition of both PR CPGs (retractor, protractor) by the levator-hold command neuron", 0);
-      m.add_synapse(hold, L.pr.cpg_inc, sp);
-      m.add_synapse(hold, L.pr.cpg_dec, sp);
-    }
-    size_t rel = def(leg + ".command.ld_release_ms", o.ld_release_ms, "ms",
-                     o.ld_release_source.empty() ? std::string(kChoice) : o.ld_release_source,
-                     "end of the central levator inhibition: the leg's first lift-off (start time)", 0);
-    size_t hold2 = def(leg + ".command.ld_hold_ms", kNever, "ms", "Knops 2013, Section 3.3 / Figs. 3.24-3.27",
-                       "gait transition: central levator inhibition starts again (after ld_release_ms)", 0);
-    size_t rel2 = def(leg + ".command.ld_release2_ms", kNever, "ms", "Knops 2013, Section 3.3 / Figs. 3.24-3.27",
-                      "gait transition: levator released again (reset; after ld_hold_ms)", 0);
-    m.add_modulation({hold, zero, {after(rel)}, drive});
-    m.add_modulation({hold, drive, {after(hold2)}, zero});
-    m.add_modulation({hold, zero, {after(rel2)}, drive});
-    // "The levator ... is suppressed" (Section 3.3) during a gait-transition hold: inhibiting
-    // the levator CPG alone keeps the levator MN silent only through IN inhibition, from which
-    // it escapes after ~300 ms as its adaptation (m_q, r_q = 0.0005/ms) decays; the tripod ->
-    // tetrapod protocol holds the front leg for ~600 ms. So the levator MN's tonic drive is
-    // lowered to ld_hold.g_mn_lev from ld_hold_ms to ld_release2_ms (the start-time hold from
-    // t = 0 is unchanged). docs/walking_model.md, "Gait transitions".
-    size_t g_mn = m.parameters().index("mn.g_app");
-    size_t mn_held = def(h + "g_mn_lev", 0.0, "nS",
-                         std::string(kChoice) + ": levator MN silent for the whole transition hold (Section 3.3)",
-                         "tonic drive of the levator MN during a gait-transition hold (ld_hold_ms to ld_release2_ms)", 0);
-    m.add_modulation({L.ld.mn_inc, mn_held, {after(hold2)}, g_mn});
-    m.add_modulation({L.ld.mn_inc, g_mn, {after(rel2)}, mn_held});
-    // "Forcing the depressor CPG neuron to be active" (Section 2.5.4): without levator
-    // inhibition the depressor CPG ends its burst by its own NaP inactivation after ~500 ms and
-    // bursts again, so a long hold released near such a new burst co-activates both CPGs (a
-    // ~560 ms levation). An extra depressor CPG drive while held keeps it active until the reset.
-    size_t dep_extra = def(h + "g_cpg_dep", 0.3, "nS",
-                           std::string(kChoice) + ": depressor CPG kept active through the transition hold (Section 2.5.4)",
-                           "extra drive of the depressor CPG during a gait-transition hold (ld_hold_ms to ld_release2_ms)", 0);
-    m.add_modulation({L.ld.cpg_dec, dep_extra, {after(hold2)}});
-    m.add_modulation({L.ld.cpg_dec, zero, {after(rel2)}, dep_extra});
+// The central levator hold that starts the leg at o.ld_release_ms (Section 2.5.4), and the
+// hold and release commands of gait transitions (Section 3.3).
+void add_levator_hold(NetworkModel& m, const NeuronClasses& c, Def& def, const LegNetwork& L, const LegOptions& o) {
+  const std::string& leg = L.leg;
+  // "central inhibition of the levator CPG neuron in the respective leg, i.e. forcing the
+  // depressor CPG neuron to be active and then resetting the CPG at proper times" (2.5.4).
+  const std::string h = leg + ".ld_hold.";
+  NapIdx q = c.sens_inh;
+  q.E_app = m.parameters().index("interneuron.excitatory.E_app");
+  size_t drive = def(h + "drive", 5.0, "nS", kChoice, "central drive of the levator-inhibiting command neuron while holding", 0);
+  size_t zero = def(h + "off", 0.0, "nS", kChoice, "its drive when released", 0);
+  q.g_app = drive;
+  size_t hold = m.add_nap_neuron(leg + ".ld_hold", q, -30, 0.3);
+  SynapseIdx si = command_inhibition_synapse(def);
+  m.add_synapse(hold, L.ld.cpg_inc, si);
+  if (o.ld_hold_g_pr > 0) {
+    // The PR system is a reflex chain, "not active in the absence of the (excitatory)
+    // peripheral input" (Section 2.5.3), but phasmid's PR CPG oscillates on its own (633 ms
+    // at IN4 = 0.60 nS) and, with the held leg at beta ~ 40 deg (just above beta_thr_pr),
+    // would run freely through the hold: its phase at the release would depend on the release
+    // time, and a leg released in the PR's protraction phase would retract during its first
+    // swing, protract during its first stance and need up to four more steps to retract in
+    // stance (an apparent "second locking" of curve walking). The hold neuron therefore
+    // silences both PR CPGs until the leg's start time, so every leg starts its PR from the
+    // same state. docs/walking_model.md, "Curve walking".
+    SynapseIdx sp = si;
+    sp.g = def(h + "g_pr", o.ld_hold_g_pr, "nS",
+               o.ld_hold_g_pr_source.empty() ? std::string(kChoice) : o.ld_hold_g_pr_source,
+               "inhibition of both PR CPGs (retractor, protractor) by the levator-hold command neuron", 0);
+    m.add_synapse(hold, L.pr.cpg_inc, sp);
+    m.add_synapse(hold, L.pr.cpg_dec, sp);
   }
+  size_t rel = def(leg + ".command.ld_release_ms", o.ld_release_ms, "ms",
+                   o.ld_release_source.empty() ? std::string(kChoice) : o.ld_release_source,
+                   "end of the central levator inhibition: the leg's first lift-off (start time)", 0);
+  size_t hold2 = def(leg + ".command.ld_hold_ms", kNever, "ms", "Knops 2013, Section 3.3 / Figs. 3.24-3.27",
+                     "gait transition: central levator inhibition starts again (after ld_release_ms)", 0);
+  size_t rel2 = def(leg + ".command.ld_release2_ms", kNever, "ms", "Knops 2013, Section 3.3 / Figs. 3.24-3.27",
+                    "gait transition: levator released again (reset; after ld_hold_ms)", 0);
+  m.add_modulation({hold, zero, {after(rel)}, drive});
+  m.add_modulation({hold, drive, {after(hold2)}, zero});
+  m.add_modulation({hold, zero, {after(rel2)}, drive});
+  // "The levator ... is suppressed" (Section 3.3) during a gait-transition hold: inhibiting
+  // the levator CPG alone keeps the levator MN silent only through IN inhibition, from which
+  // it escapes after ~300 ms as its adaptation (m_q, r_q = 0.0005/ms) decays; the tripod ->
+  // tetrapod protocol holds the front leg for ~600 ms. So the levator MN's tonic drive is
+  // lowered to ld_hold.g_mn_lev from ld_hold_ms to ld_release2_ms (the start-time hold from
+  // t = 0 is unchanged). docs/walking_model.md, "Gait transitions".
+  size_t g_mn = m.parameters().index("mn.g_app");
+  size_t mn_held = def(h + "g_mn_lev", 0.0, "nS",
+                       std::string(kChoice) + ": levator MN silent for the whole transition hold (Section 3.3)",
+                       "tonic drive of the levator MN during a gait-transition hold (ld_hold_ms to ld_release2_ms)", 0);
+  m.add_modulation({L.ld.mn_inc, mn_held, {after(hold2)}, g_mn});
+  m.add_modulation({L.ld.mn_inc, g_mn, {after(rel2)}, mn_held});
+  // "Forcing the depressor CPG neuron to be active" (Section 2.5.4): without levator
+  // inhibition the depressor CPG ends its burst by its own NaP inactivation after ~500 ms and
+  // bursts again, so a long hold released near such a new burst co-activates both CPGs (a
+  // ~560 ms levation). An extra depressor CPG drive while held keeps it active until the reset.
+  size_t dep_extra = def(h + "g_cpg_dep", 0.3, "nS",
+                         std::string(kChoice) + ": depressor CPG kept active through the transition hold (Section 2.5.4)",
+                         "extra drive of the depressor CPG during a gait-transition hold (ld_hold_ms to ld_release2_ms)", 0);
+  m.add_modulation({L.ld.cpg_dec, dep_extra, {after(hold2)}});
+  m.add_modulation({L.ld.cpg_dec, zero, {after(rel2)}, dep_extra});
+}
 
-  if (o.direction_switch) {
-    // Fig. 3.11: SF and SB, a mutually inhibitory pair driven centrally. SF presynaptically
-    // inhibits the crossed CPG -> IN connections of the PR system, SB the parallel ones.
-    const std::string sw = leg + ".switch.";
-    // Command neurons: NaP interneurons with the leak of the inhibitory peripheral INs (Table
-    // A.3, g_L = 6.8 nS), which rest near -65 mV without drive (with g_L = 2.8 nS the NaP
-    // current alone holds a plateau, so an undriven neuron would not stay silent).
-    NapIdx q = c.sens_inh;
-    q.E_app = m.parameters().index("interneuron.excitatory.E_app");
-    size_t drive = def(sw + "drive", 5.0, "nS", kChoice, "central drive of the active command neuron (SF or SB)", 0);
-    q.g_app = drive;
-    L.sf = m.add_nap_neuron(leg + ".switch.sf", q, -30, 0.3);
-    size_t sb_g = def(sw + "sb.g_app", 0.0, "nS", kChoice, "central drive of SB at the start (forward walking)", 0);
-    q.g_app = sb_g;
-    L.sb = m.add_nap_neuron(leg + ".switch.sb", q, -65, 0.9);
-    m.add_synapse(L.sf, L.sb, c.cpg_cpg);
-    m.add_synapse(L.sb, L.sf, c.cpg_cpg);
-    PresynapticGate g;
-    g.strength = def.once("syn.presyn.strength", 1.0, "1", k322, "fraction of the CPG -> IN conductance removed by full presynaptic inhibition", 0, 1);
-    g.V_h = def.once("syn.presyn.V_h", -43, "mV", std::string(kChoice) + ": as the synapses of Table A.4", "half-activation of presynaptic inhibition");
-    g.gamma = def.once("syn.presyn.gamma", -10, "1/mV", std::string(kChoice) + ": as the CPG synapses of Table A.4", "slope of presynaptic inhibition");
-    g.neuron = L.sb;
-    m.set_synapse_gate(L.pr.syn_par_inc, g);
-    m.set_synapse_gate(L.pr.syn_par_dec, g);
-    g.neuron = L.sf;
-    m.set_synapse_gate(L.pr.syn_crs_inc, g);
-    m.set_synapse_gate(L.pr.syn_crs_dec, g);
-    // Central commands (Section 3.2.2): steps of the command drives at given times.
-    size_t zero = def(sw + "off", 0.0, "nS", kChoice, "drive of an inhibited command neuron", 0);
-    size_t t_bwd = def(leg + ".command.backward_ms", kNever, "ms", "Knops 2013, Fig. 3.10 (6000 ms in middle_leg_switch.toml)",
-                       "central command: switch to backward stepping (SF off, SB on)", 0);
-    size_t t_fwd = def(leg + ".command.forward_ms", kNever, "ms", "Knops 2013, Fig. 3.10 (9250 ms in middle_leg_switch.toml)",
-                       "central command: back to forward stepping after backward_ms (SB off, SF on)", 0);
-    size_t t_side = def(leg + ".command.sideward_ms", kNever, "ms", "Knops 2013, Fig. 3.12 (4690 ms; middle_leg_sideward.toml starts the leg at 180 ms so that it falls at the phase that gives 102 deg here: docs/walking_model.md)",
-                        "central command: sideward stepping (SF and SB inhibited, FE drives changed)", 0);
-    m.add_modulation({L.sf, zero, {after(t_bwd)}, drive});
-    m.add_modulation({L.sb, drive, {after(t_bwd)}, zero});
-    m.add_modulation({L.sf, drive, {after(t_fwd)}, zero});
-    m.add_modulation({L.sb, zero, {after(t_fwd)}, drive});
-    // Sideward: "simultaneous inhibition of both the neurons SF and SB" (Section 3.2.2) by a
-    // centrally driven inhibitory neuron (removing SF's drive alone lets SB rebound and hold).
-    q.g_app = zero;
-    size_t stop = m.add_nap_neuron(leg + ".switch.stop", q, -65, 0.9);
-    SynapseIdx si = command_inhibition_synapse(def);
-    m.add_synapse(stop, L.sf, si);
-    m.add_synapse(stop, L.sb, si);
-    // "Both interneurons are active and both motoneurons are inhibited" (Section 3.2.2): with
-    // g_MN = 0.40 nS (docs/model.md) the 0.25 nS IN -> MN inhibition does not keep the PR MNs
-    // silent through the CPG switches, so the command neuron also inhibits them directly.
-    m.add_synapse(stop, L.pr.mn_inc, si);
-    m.add_synapse(stop, L.pr.mn_dec, si);
-    m.add_modulation({stop, drive, {after(t_side)}, zero});
-    m.add_modulation({L.sf, zero, {after(t_side)}, drive});  // and SF's central drive ends
-    size_t ext = m.parameters().index(leg + ".fti.cpg_ext.g_app");
-    size_t flx = m.parameters().index(leg + ".fti.cpg_flx.g_app");
-    size_t s_ext = def(leg + ".sideward.g_app_ext", 0.190, "nS", "Knops 2013, Section 3.1.2 / Fig. 3.4", "extensor CPG drive during sideward stepping", 0);
-    size_t s_flx = def(leg + ".sideward.g_app_flx", 0.120, "nS", "Knops 2013, Section 3.1.2 / Fig. 3.4", "flexor CPG drive during sideward stepping", 0);
-    m.add_modulation({L.fe.cpg_dec, s_ext, {after(t_side)}, ext});
-    m.add_modulation({L.fe.cpg_inc, s_flx, {after(t_side)}, flx});
-    // End of sideward stepping (curve walking, Section 3.2.3): everything back to forward.
-    size_t t_side_end = def(leg + ".command.sideward_end_ms", kNever, "ms", "Knops 2013, Section 3.2.3 (curve walking)",
-                            "central command: back to forward stepping after sideward_ms", 0);
-    m.add_modulation({stop, zero, {after(t_side_end)}, drive});
-    // With both PR motoneurons silent, both ThC spring constants decay to 0 with the same rate
-    // b as in (2.84), keeping k_R/k_P and hence the angle reached at the command (the
-    // fixation angles 28, 102, 128 deg of Section 3.2.2): release of the resting spring
-    // constants (see Muscle in network_model.hpp) from the command to its end.
-    size_t release = def(leg + ".sideward.rest_tone_release", 1.0, "1", "Knops 2013, eq. (2.84) / Section 3.2.2",
-                         "fraction of the ThC resting spring constants that needs an active antagonist during "
-                         "sideward stepping (1: both k decay to 0 when both PR MNs are silent)", 0, 1);
-    for (size_t mus : {m.joints()[L.pr.joint].muscle_inc, m.joints()[L.pr.joint].muscle_dec})
-      m.add_modulation({mus, release, {after(t_side), before(t_side_end)}, kNoIndex, Modulation::RestTone});
-    m.add_modulation({L.sf, drive, {after(t_side_end)}, zero});
-    m.add_modulation({L.fe.cpg_dec, ext, {after(t_side_end)}, s_ext});
-    m.add_modulation({L.fe.cpg_inc, flx, {after(t_side_end)}, s_flx});
-  }
+// The direction switch (Fig. 3.11): command neurons SF and SB, and the central commands of
+// backward, forward and sideward stepping (Section 3.2.2).
+void add_direction_switch(NetworkModel& m, const NeuronClasses& c, Def& def, LegNetwork& L) {
+  const std::string& leg = L.leg;
+  // Fig. 3.11: SF and SB, a mutually inhibitory pair driven centrally. SF presynaptically
+  // inhibits the crossed CPG -> IN connections of the PR system, SB the parallel ones.
+  const std::string sw = leg + ".switch.";
+  // Command neurons: NaP interneurons with the leak of the inhibitory peripheral INs (Table
+  // A.3, g_L = 6.8 nS), which rest near -65 mV without drive (with g_L = 2.8 nS the NaP
+  // current alone holds a plateau, so an undriven neuron would not stay silent).
+  NapIdx q = c.sens_inh;
+  q.E_app = m.parameters().index("interneuron.excitatory.E_app");
+  size_t drive = def(sw + "drive", 5.0, "nS", kChoice, "central drive of the active command neuron (SF or SB)", 0);
+  q.g_app = drive;
+  L.sf = m.add_nap_neuron(leg + ".switch.sf", q, -30, 0.3);
+  size_t sb_g = def(sw + "sb.g_app", 0.0, "nS", kChoice, "central drive of SB at the start (forward walking)", 0);
+  q.g_app = sb_g;
+  L.sb = m.add_nap_neuron(leg + ".switch.sb", q, -65, 0.9);
+  m.add_synapse(L.sf, L.sb, c.cpg_cpg);
+  m.add_synapse(L.sb, L.sf, c.cpg_cpg);
+  PresynapticGate g;
+  g.strength = def.once("syn.presyn.strength", 1.0, "1", k322, "fraction of the CPG -> IN conductance removed by full presynaptic inhibition", 0, 1);
+  g.V_h = def.once("syn.presyn.V_h", -43, "mV", std::string(kChoice) + ": as the synapses of Table A.4", "half-activation of presynaptic inhibition");
+  g.gamma = def.once("syn.presyn.gamma", -10, "1/mV", std::string(kChoice) + ": as the CPG synapses of Table A.4", "slope of presynaptic inhibition");
+  g.neuron = L.sb;
+  m.set_synapse_gate(L.pr.syn_par_inc, g);
+  m.set_synapse_gate(L.pr.syn_par_dec, g);
+  g.neuron = L.sf;
+  m.set_synapse_gate(L.pr.syn_crs_inc, g);
+  m.set_synapse_gate(L.pr.syn_crs_dec, g);
+  // Central commands (Section 3.2.2): steps of the command drives at given times.
+  size_t zero = def(sw + "off", 0.0, "nS", kChoice, "drive of an inhibited command neuron", 0);
+  size_t t_bwd = def(leg + ".command.backward_ms", kNever, "ms", "Knops 2013, Fig. 3.10 (6000 ms in middle_leg_switch.toml)",
+                     "central command: switch to backward stepping (SF off, SB on)", 0);
+  size_t t_fwd = def(leg + ".command.forward_ms", kNever, "ms", "Knops 2013, Fig. 3.10 (9250 ms in middle_leg_switch.toml)",
+                     "central command: back to forward stepping after backward_ms (SB off, SF on)", 0);
+  size_t t_side = def(leg + ".command.sideward_ms", kNever, "ms", "Knops 2013, Fig. 3.12 (4690 ms; middle_leg_sideward.toml starts the leg at 180 ms so that it falls at the phase that gives 102 deg here: docs/walking_model.md)",
+                      "central command: sideward stepping (SF and SB inhibited, FE drives changed)", 0);
+  m.add_modulation({L.sf, zero, {after(t_bwd)}, drive});
+  m.add_modulation({L.sb, drive, {after(t_bwd)}, zero});
+  m.add_modulation({L.sf, drive, {after(t_fwd)}, zero});
+  m.add_modulation({L.sb, zero, {after(t_fwd)}, drive});
+  // Sideward: "simultaneous inhibition of both the neurons SF and SB" (Section 3.2.2) by a
+  // centrally driven inhibitory neuron (removing SF's drive alone lets SB rebound and hold).
+  q.g_app = zero;
+  size_t stop = m.add_nap_neuron(leg + ".switch.stop", q, -65, 0.9);
+  SynapseIdx si = command_inhibition_synapse(def);
+  m.add_synapse(stop, L.sf, si);
+  m.add_synapse(stop, L.sb, si);
+  // "Both interneurons are active and both motoneurons are inhibited" (Section 3.2.2): with
+  // g_MN = 0.40 nS (docs/model.md) the 0.25 nS IN -> MN inhibition does not keep the PR MNs
+  // silent through the CPG switches, so the command neuron also inhibits them directly.
+  m.add_synapse(stop, L.pr.mn_inc, si);
+  m.add_synapse(stop, L.pr.mn_dec, si);
+  m.add_modulation({stop, drive, {after(t_side)}, zero});
+  m.add_modulation({L.sf, zero, {after(t_side)}, drive});  // and SF's central drive ends
+  size_t ext = m.parameters().index(leg + ".fti.cpg_ext.g_app");
+  size_t flx = m.parameters().index(leg + ".fti.cpg_flx.g_app");
+  size_t s_ext = def(leg + ".sideward.g_app_ext", 0.190, "nS", "Knops 2013, Section 3.1.2 / Fig. 3.4", "extensor CPG drive during sideward stepping", 0);
+  size_t s_flx = def(leg + ".sideward.g_app_flx", 0.120, "nS", "Knops 2013, Section 3.1.2 / Fig. 3.4", "flexor CPG drive during sideward stepping", 0);
+  m.add_modulation({L.fe.cpg_dec, s_ext, {after(t_side)}, ext});
+  m.add_modulation({L.fe.cpg_inc, s_flx, {after(t_side)}, flx});
+  // End of sideward stepping (curve walking, Section 3.2.3): everything back to forward.
+  size_t t_side_end = def(leg + ".command.sideward_end_ms", kNever, "ms", "Knops 2013, Section 3.2.3 (curve walking)",
+                          "central command: back to forward stepping after sideward_ms", 0);
+  m.add_modulation({stop, zero, {after(t_side_end)}, drive});
+  // With both PR motoneurons silent, both ThC spring constants decay to 0 with the same rate
+  // b as in (2.84), keeping k_R/k_P and hence the angle reached at the command (the
+  // fixation angles 28, 102, 128 deg of Section 3.2.2): release of the resting spring
+  // constants (see Muscle in network_model.hpp) from the command to its end.
+  size_t release = def(leg + ".sideward.rest_tone_release", 1.0, "1", "Knops 2013, eq. (2.84) / Section 3.2.2",
+                       "fraction of the ThC resting spring constants that needs an active antagonist during "
+                       "sideward stepping (1: both k decay to 0 when both PR MNs are silent)", 0, 1);
+  for (size_t mus : {m.joints()[L.pr.joint].muscle_inc, m.joints()[L.pr.joint].muscle_dec})
+    m.add_modulation({mus, release, {after(t_side), before(t_side_end)}, kNoIndex, Modulation::RestTone});
+  m.add_modulation({L.sf, drive, {after(t_side_end)}, zero});
+  m.add_modulation({L.fe.cpg_dec, ext, {after(t_side_end)}, s_ext});
+  m.add_modulation({L.fe.cpg_inc, flx, {after(t_side_end)}, s_flx});
+}
+
+}  // namespace
+
+// One leg's parameters, neurons, synapses and sensory couplings. The order of the steps is the
+// order of the leg's states and parameters in every output file and saved config (docs/hdf5.md),
+// and each step reads indices declared by the ones before it.
+LegNetwork add_leg_network(NetworkModel& m, const NeuronClasses& c, const std::string& leg, const LegOptions& o) {
+  Def def{m};
+  LegNetwork L;
+  L.leg = leg;
+  auto mid = [&](JointType t) {
+    JointTable tab = joint_table(leg, t, t == JointType::Thc ? o.thc_set : "");
+    return 0.5 * (tab.angle_min_deg + tab.angle_max_deg);
+  };
+  // Order PR, LD, FE as in Fig. 2.13 (top to bottom).
+  L.pr = add_joint_network(m, c, leg, JointType::Thc, mid(JointType::Thc), o.thc_set,
+                           o.direction_switch ? CpgToIn::Both : CpgToIn::Parallel);
+  // LD starts levated (swing): without CS input the levator is active (Section 2.5.3).
+  JointTable ctr = joint_table(leg, JointType::Ctr);
+  L.ld = add_joint_network(m, c, leg, JointType::Ctr, ctr.angle_max_deg);
+  L.fe = add_joint_network(m, c, leg, JointType::Fti, mid(JointType::Fti), "",
+                           o.crossed_fe ? CpgToIn::Crossed : CpgToIn::Parallel);
+  L.beta_state = m.joints()[L.ld.joint].angle_state;
+  L.gamma_state = m.joints()[L.fe.joint].angle_state;
+  add_sensory_coupling(m, c, def, L, o);
+  if (o.ld_release_ms >= 0) add_levator_hold(m, c, def, L, o);
+  if (o.direction_switch) add_direction_switch(m, c, def, L);
   return L;
 }
 
