@@ -4,9 +4,9 @@
 #
 # Why: Debian 12's binary packages are compiled without optimisation. debian/rules passes
 # -DCMAKE_C_FLAGS=-fcommon, which replaces the -O2 of dpkg-buildflags, so CVODES' and
-# ARKODE's step, error-test, Newton and interpolation code runs as -O0 code (bench/results
-# "SUNDIALS built with optimisation"). The same source at -O2 (no -march, no fast-math:
-# the same IEEE operations in the same order) gives bit-identical trajectories.
+# ARKODE's step, error-test, Newton and interpolation code runs as -O0 code (docs/performance.md).
+# The same source at -O2 (no -march, no fast-math: the same IEEE operations in the same order)
+# gives bit-identical trajectories.
 #
 # Idempotent: skips the build when build/sundials/install holds this version already.
 # Exit status 0 = the optimised build is in place; non-zero = it could not be made (setup.sh

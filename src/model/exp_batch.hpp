@@ -1,7 +1,7 @@
 #pragma once
 // exp of n arguments at once: e[i] = exp(x[i]). The network's right-hand side takes about 45
-// exponentials per evaluation (model/neurons.hpp, two phases); one libm call each was a
-// quarter of a Dormand-Prince run's time (bench/results, "A cheaper right-hand side").
+// exponentials per evaluation (model/neurons.hpp, two phases), and one libm call each
+// dominated the right-hand side's time (docs/performance.md).
 // For double the loop is vectorised over glibc's vector math library (libmvec, the variant the
 // compiler picks for the instruction set: 4 lanes with AVX2, 2 with SSE2), whose results agree
 // with the scalar exp to a few ulp; for any other type (ceres::Jet) each argument is taken

@@ -117,9 +117,9 @@ struct NetworkComponents {
 
 // The neurons' parameters of some components gathered once (NetworkModel::bind_neurons), by
 // position in NetworkComponents::neurons: a double evaluation given them reads them in place
-// instead of gathering each neuron's 14 or 32 values by index on every call (an eighth of a
-// spiking three-leg run: bench/results "Parameters bound per run"). They hold for one
-// parameter vector; whoever changes its values binds again.
+// instead of gathering each neuron's 14 or 32 values by index on every call, a gather that
+// otherwise repeats at every right-hand side of a run (measured: docs/performance.md). They
+// hold for one parameter vector; whoever changes its values binds again.
 struct BoundNeuronParams {
   std::vector<NapNeuronParams<double>> nap;
   std::vector<MotoneuronParams<double>> mn;
@@ -189,8 +189,7 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   ModelPartition partition(PartitionGrain grain) const override;
   // Rate motoneurons only: the joints' own step sizes keep feature accuracy and save time. With
   // spiking ones they lose accuracy in spike-driven features at the same rtol, and the tighter
-  // rtol that restores it costs the time saved (figures: bench/results "Partitioned
-  // integration").
+  // rtol that restores it costs the time saved (docs/performance.md).
   bool partition_by_default() const override { return rate_mn_; }
   std::unique_ptr<OdeModelPart> make_part(const ModelPartition& partition, size_t k) const override;
   std::unique_ptr<OdeModelPart> make_whole() const override;
@@ -225,7 +224,7 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   template <class T>
   void joint_equations(const Joint& j, const T* y, const T* p, const NetworkScratch<T>& sc, T* ydot) const;
   // Gathered in place: a returned struct's copy read its fields back before their stores had
-  // completed (store-forwarding stalls, a fifth of the evaluation's time).
+  // completed (store-forwarding stalls that showed in the evaluation's profile).
   template <class T>
   static void gather_params(const NapIdx& x, const T* p, NapNeuronParams<T>& q);
   template <class T>

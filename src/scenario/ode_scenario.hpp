@@ -13,7 +13,7 @@ namespace phasmid::scenario {
 class OdeScenario : public Scenario {
  public:
   // `defaults`: the kind's settings where the config's [simulation] says nothing (the
-  // integrator and tolerances its method study chose: bench/results "Method study").
+  // integrator and tolerances the method study chose: docs/performance.md).
   explicit OdeScenario(std::unique_ptr<model::OdeModel> model, RunSettings defaults = {})
       : model_(std::move(model)), defaults_(std::move(defaults)) {}
   RunSettings default_settings() const override { return defaults_; }

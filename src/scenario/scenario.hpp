@@ -56,7 +56,7 @@ class ScenarioRun {
   virtual void write(io::H5Writer& out) const = 0;
   // Lines worth showing on the terminal after the run (resolved trigger times, warnings).
   virtual std::vector<std::string> notes() const { return {}; }
-  // One line: what was run and how long it took ("26 states, 9000 ms in 0.71 s").
+  // One line: what was run and how long it took (states, simulated ms, wall seconds).
   virtual std::string summary() const = 0;
   // The integrated trajectory of kinds that are one ODE system (nullptr for others), for
   // callers that hand its arrays on without copying (the Python module, docs/python.md).
