@@ -118,8 +118,8 @@ struct NetworkComponents {
 // The neurons' parameters of some components gathered once (NetworkModel::bind_neurons), by
 // position in NetworkComponents::neurons: a double evaluation given them reads them in place
 // instead of gathering each neuron's 14 or 32 values by index on every call, a gather that
-// otherwise repeats at every right-hand side of a run (measured: docs/performance.md). They
-// hold for one parameter vector; whoever changes its values binds again.
+// would otherwise repeat at every right-hand side of a run. They hold for one parameter
+// vector; whoever changes its values binds again.
 struct BoundNeuronParams {
   std::vector<NapNeuronParams<double>> nap;
   std::vector<MotoneuronParams<double>> mn;
