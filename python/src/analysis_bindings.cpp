@@ -7,6 +7,7 @@
 #include "app/write_output.hpp"
 #include "bindings.hpp"
 #include "config/gsa_inputs.hpp"
+#include "gsa/summary.hpp"
 #include "config/sweep_inputs.hpp"
 #include "dist/executor.hpp"
 #include "config/fit_section.hpp"
@@ -173,20 +174,20 @@ py::dict run_sweep(const std::shared_ptr<PyScenario>& s, int threads, bool resum
   return sweep_outcome(r);
 }
 
-// Runs the config's [gsa] analysis as `phasmid gsa` does (config::run_gsa) into `out`; returns
+// Runs the config's [gsa] analysis as `phasmid gsa` does (gsa::run_gsa) into `out`; returns
 // the sweep's counts and the table the verb prints.
 py::dict run_gsa(const std::shared_ptr<PyScenario>& s, int threads, bool resume, const std::string& out, bool kept,
                  long stop_after) {
-  const config::GsaInputs in = config_stage([&] { return config::gsa_inputs(s->cfg, s->sets); });
+  const gsa::GsaInputs in = config_stage([&] { return config::gsa_inputs(s->cfg, s->sets); });
   check_run(*s, threads, out);
-  config::GsaOutcome r;
+  gsa::GsaOutcome r;
   {
     py::gil_scoped_release release;
-    r = config::run_gsa(in, sweep_options(threads, resume, out, stop_after), false);
+    r = gsa::run_gsa(in, sweep_options(threads, resume, out, stop_after), false);
   }
   if (!r.analysed) raise_unfinished("gsa", r.sweep, unfinished_tail("gsa", kept, r.sweep));
   py::dict d = sweep_outcome(r.sweep);
-  d["summary"] = config::gsa_summary(r.result);
+  d["summary"] = gsa::gsa_summary(r.result);
   return d;
 }
 
