@@ -4,7 +4,7 @@
 #include <limits>
 #include <map>
 
-#include "app/write_output.hpp"
+#include "output/run_file.hpp"
 #include "bindings.hpp"
 #include "config/gsa_inputs.hpp"
 #include "gsa/summary.hpp"
@@ -93,7 +93,7 @@ py::dict run_fit(const std::shared_ptr<PyScenario>& s, const std::map<std::strin
     fit::FitResult result = fit::run_fit(*problem, spec);
     // Interrupted evaluations count as failed ones inside the optimiser; the fit is not a result.
     if (solver::interrupt_requested()) throw solver::Interrupted("fit interrupted");
-    app::write_run_file(w, s->cfg, s->sets, *s->scenario);
+    output::write_run_file(w, s->cfg, s->sets, *s->scenario);
     fit::write_fit_h5(w, *problem, spec, result);
     w.commit();
     text = fit::format_result(*problem, result);

@@ -14,8 +14,6 @@ std::vector<Verb>& verbs() {
   static std::vector<Verb> v;
   return v;
 }
-static std::string g_command_line;
-const std::string& command_line() { return g_command_line; }
 }  // namespace phasmid::app
 
 namespace {
@@ -55,7 +53,9 @@ int finish(int code, const std::string& line) {
 int main(int argc, char** argv) {
   using namespace phasmid::app;
   phasmid::dist::Session mpi(argc, argv);
-  for (int i = 0; i < argc; ++i) g_command_line += (i ? " " : "") + std::string(argv[i]);
+  std::string line;
+  for (int i = 0; i < argc; ++i) line += (i ? " " : "") + std::string(argv[i]);
+  phasmid::output::set_command_line(std::move(line));
 
   CLI::App app{"phasmid: simulation, sensitivities, fits and sweeps of the stick-insect walking model"};
   app.set_version_flag("--version", std::string(PHASMID_VERSION) + " (" + phasmid::dist::mpi_description() + "; " +
