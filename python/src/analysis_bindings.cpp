@@ -79,8 +79,8 @@ fit::FitOverrides fit_overrides(const std::map<std::string, py::object>& o) {
 py::dict run_fit(const std::shared_ptr<PyScenario>& s, const std::map<std::string, py::object>& options,
                  const std::vector<std::string>& profile, const std::string& out) {
   const fit::FitOverrides ov = fit_overrides(options);
-  fit::FitSpec spec;
-  std::unique_ptr<fit::ResidualProblem> problem = config_stage([&] { return s->scenario->make_fit(s->cfg, ov, spec); });
+  fit::FitSpec spec = config_stage([&] { return config::fit_spec(s->cfg, *s->scenario, ov); });
+  std::unique_ptr<fit::ResidualProblem> problem = config_stage([&] { return s->scenario->make_fit(spec); });
   spec.optimizer.progress = false;
   if (!profile.empty()) spec.profile = profile;
   std::vector<std::string> inputs = spec.inputs;

@@ -54,8 +54,8 @@ int run_fit_verb(const FitArgs& a) {
   const auto lock = lock_output(a.out, true);  // rank 0 only
   config::Config cfg = config::load_config(a.config);
   auto scenario = config::build_scenario(cfg, a.sets);
-  fit::FitSpec spec;
-  auto problem = scenario->make_fit(cfg, a.ov, spec);
+  fit::FitSpec spec = config::fit_spec(cfg, *scenario, a.ov);
+  auto problem = scenario->make_fit(spec);
   spec.optimizer.progress = !a.quiet;
   if (!a.profile.empty()) spec.profile = a.profile;
   if (dist::rank() != 0) {  // an MPI worker: evaluates starts and profiles for rank 0

@@ -7,6 +7,8 @@
 #include <set>
 
 #include "common/error.hpp"
+#include "config/cruse_section.hpp"
+#include "model/ode_model.hpp"
 #include "build_info.hpp"
 
 namespace phasmid::fit {
@@ -388,3 +390,16 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
 }
 
 }  // namespace phasmid::fit
+
+namespace phasmid::config {
+
+fit::FitSpec fit_spec(const Config& cfg, const scenario::Scenario& scenario, const fit::FitOverrides& overrides) {
+  if (scenario.kind() == "cruse1980") return parse_cruse_fit(cfg, scenario.parameters(), overrides);
+  const model::OdeModel* model = scenario.ode_model();
+  if (!model) return {};
+  fit::FitSpec spec = fit::load_fit_spec(cfg, *model, overrides);
+  spec.problem.solver.progress = false;
+  return spec;
+}
+
+}  // namespace phasmid::config

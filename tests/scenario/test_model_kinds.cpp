@@ -108,8 +108,8 @@ tolerance = 0.001
 )",
                                                   "toy_fit.toml");
   auto s = config::build_scenario(cfg);
-  fit::FitSpec spec;
-  auto problem = s->make_fit(cfg, {}, spec);
+  fit::FitSpec spec = config::fit_spec(cfg, *s, {});
+  auto problem = s->make_fit(spec);
   spec.optimizer.progress = false;
   const fit::FitResult result = fit::run_fit(*problem, spec);
   ASSERT_TRUE(result.best().converged) << result.best().termination;
