@@ -9,7 +9,6 @@
 #include <chrono>
 
 #include "common/error.hpp"
-#include "config/toml_util.hpp"
 #include "cruse/cruse1980_features.hpp"
 #include "cruse/cruse1980_fit.hpp"
 #include "cruse/cruse1980_model.hpp"
@@ -119,14 +118,9 @@ class CruseScenario : public Scenario {
 
 std::vector<double> stability_periods(const ModelSection& s) {
   std::vector<double> periods;
-  const toml::node* n = s.node("stability_periods_ms");
-  if (!n) return periods;
-  const toml::array* a = n->as_array();
-  if (!a || a->empty()) throw Error(s.where("stability_periods_ms") + ": stability_periods_ms must be a list of periods (ms)");
-  for (const auto& e : *a) {
-    double v = config::number(s.config(), e, "stability_periods_ms");
-    if (!(v > 0)) throw Error(config::where(s.config(), e) + ": stability_periods_ms: a period must be > 0 ms");
-    periods.push_back(v);
+  for (const auto& e : s.numbers("stability_periods_ms", "a list of periods (ms)")) {
+    if (!(e.value > 0)) throw Error(e.where + ": stability_periods_ms: a period must be > 0 ms");
+    periods.push_back(e.value);
   }
   return periods;
 }

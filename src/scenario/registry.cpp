@@ -1,6 +1,7 @@
 #include "scenario/registry.hpp"
 
 #include "common/error.hpp"
+#include "common/nearest.hpp"
 
 namespace phasmid::scenario {
 
@@ -31,30 +32,10 @@ const ModelKind& model_kind(const std::string& name) {
     if (k.name == name) return k;
     names.push_back(k.name);
   }
-  std::string list, near = config::nearest(name, names);
+  std::string list, near = nearest(name, names);
   for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
   throw Error("unknown model type '" + name + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
               "; the model types are " + list);
-}
-
-std::string ModelSection::where(const std::string& key) const {
-  const toml::node* n = node(key);
-  return n ? config::where(cfg_, *n) : config::where(cfg_, table_);
-}
-
-std::string ModelSection::text(const std::string& key, const std::string& fallback) const {
-  const toml::node* n = node(key);
-  return n ? config::text(cfg_, *n, key) : fallback;
-}
-
-double ModelSection::number(const std::string& key, double fallback) const {
-  const toml::node* n = node(key);
-  return n ? config::number(cfg_, *n, key) : fallback;
-}
-
-bool ModelSection::boolean(const std::string& key, bool fallback) const {
-  const toml::node* n = node(key);
-  return n ? config::boolean(cfg_, *n, key) : fallback;
 }
 
 std::string ModelSection::choice(const std::string& key, const std::string& fallback,
