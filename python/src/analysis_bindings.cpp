@@ -9,7 +9,7 @@
 #include "config/gsa_inputs.hpp"
 #include "gsa/summary.hpp"
 #include "config/sweep_inputs.hpp"
-#include "dist/executor.hpp"
+#include "parallel/executor.hpp"
 #include "config/fit_section.hpp"
 #include "fit/fit_problem.hpp"
 #include "fit/fit_run.hpp"
@@ -60,7 +60,7 @@ fit::FitOverrides fit_overrides(const std::map<std::string, py::object>& o) {
     else if (key == "threads") {
       const long t = integer_option(key, value);
       if (t < std::numeric_limits<int>::min() || t > std::numeric_limits<int>::max())
-        throw ConfigError("-j/--threads " + std::to_string(t) + ": at most " + std::to_string(dist::kMaxThreads));
+        throw ConfigError("-j/--threads " + std::to_string(t) + ": at most " + std::to_string(parallel::kMaxThreads));
       ov.threads = static_cast<int>(t);
     } else
       throw ConfigError("fit: unknown option '" + key +
@@ -68,7 +68,7 @@ fit::FitOverrides fit_overrides(const std::map<std::string, py::object>& o) {
   }
   config_stage([&] {
     fit::check_overrides(ov);
-    dist::bounded_threads(ov.threads);
+    parallel::bounded_threads(ov.threads);
   });
   return ov;
 }
@@ -154,7 +154,7 @@ py::dict sweep_outcome(const sweep::SweepOutcome& r) {
 // Threads, and `out` (with its journal) checked as the CLI's sweep and gsa check them, before
 // any work: an Error (not a ConfigError: nothing of the config is wrong) naming the path.
 void check_run(const PyScenario& s, int threads, const std::string& out) {
-  config_stage([&] { dist::bounded_threads(threads); });
+  config_stage([&] { parallel::bounded_threads(threads); });
   io::check_output_path(out, s.inputs(), {sweep::Journal::path_for(out)});
 }
 

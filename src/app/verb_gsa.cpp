@@ -10,8 +10,8 @@
 #include "app/write_output.hpp"
 #include "config/gsa_inputs.hpp"
 #include "gsa/summary.hpp"
-#include "dist/executor.hpp"
-#include "dist/session.hpp"
+#include "parallel/executor.hpp"
+#include "parallel/session.hpp"
 #include "io/output_path.hpp"
 #include "sweep/sweep_runner.hpp"
 
@@ -40,7 +40,7 @@ int run(const GsaArgs& a) {
   const auto lock = lock_output(a.out);
   const gsa::GsaInputs in = config::gsa_inputs(config::load_config(a.config), a.sets);
   const bool sweep_done = sweep_already_done(a);
-  if (sweep_done && dist::rank() != 0) return 0;  // MPI worker rank: rank 0 analyses
+  if (sweep_done && parallel::rank() != 0) return 0;  // MPI worker rank: rank 0 analyses
   sweep::SweepOptions o;
   o.output = a.out, o.resume = a.resume, o.threads = a.threads, o.stop_after = a.stop_after;
   o.progress = !a.quiet, o.handle_signals = true, o.command = command_line();

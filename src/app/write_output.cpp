@@ -4,17 +4,17 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "dist/executor.hpp"
-#include "dist/session.hpp"
+#include "parallel/executor.hpp"
+#include "parallel/session.hpp"
 
 namespace phasmid::app {
 
 std::unique_ptr<io::OutputLock> lock_output(const std::string& out, bool release_workers) {
-  if (dist::rank() != 0) return nullptr;
+  if (parallel::rank() != 0) return nullptr;
   try {
     return std::make_unique<io::OutputLock>(out);
   } catch (...) {
-    if (release_workers) dist::release_workers();
+    if (release_workers) parallel::release_workers();
     throw;
   }
 }

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "dist/session.hpp"
+#include "parallel/session.hpp"
 #include "io/output_lock.hpp"
 
 namespace phasmid::gsa {
@@ -29,7 +29,7 @@ GsaOutcome run_gsa(const GsaInputs& in, const sweep::SweepOptions& o, bool sweep
   // Rank 0 holds the output from the sweep's journal to the analysis' rename (the verb's lock,
   // or one taken here for the Python module).
   std::optional<io::HeldOutputLock> lock;
-  if (dist::rank() == 0) lock.emplace(o.output);
+  if (parallel::rank() == 0) lock.emplace(o.output);
   if (sweep_done) {  // --resume of a finished file: only if it is this config's sweep
     sweep::check_finished_sweep(o.output, in.sweep);
     out.result = analyse_and_write(in, o.output, o.output, o.command);
