@@ -6,16 +6,22 @@
 namespace phasmid::scenario {
 
 #define PHASMID_MODEL_KIND(factory) ModelKind factory();
+#define PHASMID_TEST_PROBLEM(factory) ModelKind factory();
 #include "scenario/kinds/builtin_kinds.def"
 #undef PHASMID_MODEL_KIND
+#undef PHASMID_TEST_PROBLEM
 
 namespace {
 std::vector<ModelKind>& registry() {
   static std::vector<ModelKind> kinds = [] {
     std::vector<ModelKind> k;
 #define PHASMID_MODEL_KIND(factory) k.push_back(factory());
+#define PHASMID_TEST_PROBLEM(factory) \
+  k.push_back(factory());             \
+  k.back().category = KindCategory::TestProblem;
 #include "scenario/kinds/builtin_kinds.def"
 #undef PHASMID_MODEL_KIND
+#undef PHASMID_TEST_PROBLEM
     return k;
   }();
   return kinds;
@@ -23,6 +29,8 @@ std::vector<ModelKind>& registry() {
 }  // namespace
 
 const std::vector<ModelKind>& model_kinds() { return registry(); }
+
+std::string category_name(KindCategory c) { return c == KindCategory::TestProblem ? "test_problem" : "model"; }
 
 RegisterModelKind::RegisterModelKind(ModelKind kind) { registry().push_back(std::move(kind)); }
 

@@ -39,12 +39,21 @@ class ModelSection {
   std::string choice(const std::string& key, const std::string& fallback, const std::vector<std::string>& allowed) const;
 };
 
+// A kind is a model (of walking, or of its parts) or an analytic test problem: a function or
+// oscillator with a known answer that exists to test the methods (GSA indices, continuation,
+// the solver's event handling). `phasmid models` lists the two apart.
+enum class KindCategory { Model, TestProblem };
+
 struct ModelKind {
   std::string name;         // `[model] type = "<name>"`
   std::string description;  // one line, for `phasmid models`
   std::set<std::string> keys;  // [model] keys besides `type` and `description`
   std::function<std::unique_ptr<Scenario>(const ModelSection&)> make;
+  KindCategory category = KindCategory::Model;  // set by the registration (builtin_kinds.def)
 };
+
+// "model" | "test_problem" (`phasmid models --json`).
+std::string category_name(KindCategory c);
 
 // Every registered kind, built-in first, in registration order.
 const std::vector<ModelKind>& model_kinds();
