@@ -46,14 +46,9 @@ fit::FitSpec parse_cruse_fit(const Config& cfg, const model::ParameterSet& base,
   for (auto* t : fit::fit_tables(cfg, fit, "feature")) {
     check_keys(cfg, *t, "fit.feature", {"name", "value", "tolerance", "period_ms", "set"});
     if (!fit::in_target_set(cfg, *t, spec.target_set)) continue;
+    const fit::FeatureTarget f = fit::feature_target(cfg, *t);
     cruse::CruseTarget c;
-    c.origin = where(cfg, *t);
-    const toml::node* nn = t->get("name");
-    if (!nn || !t->get("value") || !t->get("tolerance")) throw Error(c.origin + ": [[fit.feature]] needs name, value and tolerance");
-    c.feature = text(cfg, *nn, "name");
-    c.origin = where(cfg, *nn);
-    c.value = number(cfg, *t->get("value"), "value");
-    c.tolerance = number(cfg, *t->get("tolerance"), "tolerance");
+    c.feature = f.feature, c.value = f.value, c.tolerance = f.tolerance, c.origin = f.origin;
     if (auto n = t->get("period_ms")) c.period_ms = number(cfg, *n, "period_ms");
     targets.push_back(c);
     spec.targets.features.push_back(

@@ -24,6 +24,8 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
 const toml::table& fit_section(const config::Config& cfg);
 std::vector<const toml::table*> fit_tables(const config::Config& cfg, const toml::table& fit, const std::string& key);
 bool in_target_set(const config::Config& cfg, const toml::table& t, const std::string& set);
+// The name, value and tolerance of a [[fit.feature]] table (its origin: the name's file:line).
+FeatureTarget feature_target(const config::Config& cfg, const toml::table& t);
 // The keys every model shares: optimiser and its stop rules, multistart, absolute_sigma,
 // profiles, output_dt_ms, target_set (checked against the sets named by the [[fit.KEY]]
 // tables of `target_keys`) and the parameters (--parameters, parameter_table,
