@@ -69,7 +69,7 @@ double simulation_seconds(double t_end, const std::string& mn) {
 
 // The shipped analysis `config`: sweep seconds, analysis seconds and their ratio.
 int bench_config(const std::string& config, int threads) {
-  const config::GsaInputs in = config::gsa_inputs(config::load_config(config), {});
+  const gsa::GsaInputs in = config::gsa_inputs(config::load_config(config), {});
   const std::string out = "bench_gsa_design.h5";
   std::remove(out.c_str());
   sweep::SweepOptions o;
@@ -79,7 +79,7 @@ int bench_config(const std::string& config, int threads) {
   const double sweep_s = seconds_since(t0);
   if (!s.complete) return 1;
   const auto t1 = std::chrono::steady_clock::now();
-  const gsa::GsaResult r = config::analyse_and_write(in, out, out, "bench_gsa");
+  const gsa::GsaResult r = gsa::analyse_and_write(in, out, out, "bench_gsa");
   const double analysis_s = seconds_since(t1);
   std::remove(out.c_str());
   std::printf("# bench_gsa %s: %s, %zu design rows, %zu features, %zu bootstrap resamples, %s\n", config.c_str(),

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "config/sweep_inputs.hpp"
-#include "dist/executor.hpp"
-#include "dist/session.hpp"
+#include "parallel/executor.hpp"
+#include "parallel/session.hpp"
 #include "sweep/sweep_runner.hpp"
 
 using namespace phasmid;
@@ -26,13 +26,13 @@ namespace {
 // Each worker keeps `slots` tasks in flight, so the master always has results waiting and the
 // rate is what the master can handle, not the round-trip latency of one task.
 int master_throughput(std::size_t n_tasks, int slots) {
-  auto exec = dist::make_executor(slots);
-  std::vector<dist::Task> tasks;
+  auto exec = parallel::make_executor(slots);
+  std::vector<parallel::Task> tasks;
   for (std::size_t i = 0; i < n_tasks; ++i) tasks.push_back({i, {}});
   const std::string record(200, 'x');  // about a sweep point's journal line
   std::size_t received = 0;
   const auto t0 = std::chrono::steady_clock::now();
-  exec->run(tasks, [&](const dist::Task&, int) { return record; }, [&](std::size_t, std::string) { ++received; },
+  exec->run(tasks, [&](const parallel::Task&, int) { return record; }, [&](std::size_t, std::string) { ++received; },
             [] { return true; });
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (exec->is_master())
@@ -106,7 +106,7 @@ int costs_and_projection(const std::string& config, double master_us) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  dist::Session mpi(argc, argv);
+  parallel::Session mpi(argc, argv);
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "master")
     return master_throughput(argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 20000, argc > 3 ? std::atoi(argv[3]) : 8);

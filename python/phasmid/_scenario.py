@@ -73,7 +73,7 @@ def _sets(values):
 
 def _threads(what, threads):
     t = _integer(what, "threads", threads)
-    # The C++ core checks the range (dist::bounded_threads); beyond a C int it cannot be passed.
+    # The C++ core checks the range (parallel::bounded_threads); beyond a C int it cannot be passed.
     return max(min(t, 2 ** 31 - 1), -(2 ** 31))
 
 

@@ -4,11 +4,12 @@
 #include <limits>
 #include <map>
 
-#include "app/write_output.hpp"
+#include "output/run_file.hpp"
 #include "bindings.hpp"
 #include "config/gsa_inputs.hpp"
+#include "gsa/summary.hpp"
 #include "config/sweep_inputs.hpp"
-#include "dist/executor.hpp"
+#include "parallel/executor.hpp"
 #include "config/fit_section.hpp"
 #include "fit/fit_problem.hpp"
 #include "fit/fit_run.hpp"
@@ -59,7 +60,7 @@ fit::FitOverrides fit_overrides(const std::map<std::string, py::object>& o) {
     else if (key == "threads") {
       const long t = integer_option(key, value);
       if (t < std::numeric_limits<int>::min() || t > std::numeric_limits<int>::max())
-        throw ConfigError("-j/--threads " + std::to_string(t) + ": at most " + std::to_string(dist::kMaxThreads));
+        throw ConfigError("-j/--threads " + std::to_string(t) + ": at most " + std::to_string(parallel::kMaxThreads));
       ov.threads = static_cast<int>(t);
     } else
       throw ConfigError("fit: unknown option '" + key +
@@ -67,7 +68,7 @@ fit::FitOverrides fit_overrides(const std::map<std::string, py::object>& o) {
   }
   config_stage([&] {
     fit::check_overrides(ov);
-    dist::bounded_threads(ov.threads);
+    parallel::bounded_threads(ov.threads);
   });
   return ov;
 }
@@ -78,8 +79,8 @@ fit::FitOverrides fit_overrides(const std::map<std::string, py::object>& o) {
 py::dict run_fit(const std::shared_ptr<PyScenario>& s, const std::map<std::string, py::object>& options,
                  const std::vector<std::string>& profile, const std::string& out) {
   const fit::FitOverrides ov = fit_overrides(options);
-  fit::FitSpec spec;
-  std::unique_ptr<fit::ResidualProblem> problem = config_stage([&] { return s->scenario->make_fit(s->cfg, ov, spec); });
+  fit::FitSpec spec = config_stage([&] { return config::fit_spec(s->cfg, *s->scenario, ov); });
+  std::unique_ptr<fit::ResidualProblem> problem = config_stage([&] { return s->scenario->make_fit(spec); });
   spec.optimizer.progress = false;
   if (!profile.empty()) spec.profile = profile;
   std::vector<std::string> inputs = spec.inputs;
@@ -92,7 +93,7 @@ py::dict run_fit(const std::shared_ptr<PyScenario>& s, const std::map<std::strin
     fit::FitResult result = fit::run_fit(*problem, spec);
     // Interrupted evaluations count as failed ones inside the optimiser; the fit is not a result.
     if (solver::interrupt_requested()) throw solver::Interrupted("fit interrupted");
-    app::write_run_file(w, s->cfg, s->sets, *s->scenario);
+    output::write_run_file(w, s->cfg, s->sets, *s->scenario);
     fit::write_fit_h5(w, *problem, spec, result);
     w.commit();
     text = fit::format_result(*problem, result);
@@ -153,7 +154,7 @@ py::dict sweep_outcome(const sweep::SweepOutcome& r) {
 // Threads, and `out` (with its journal) checked as the CLI's sweep and gsa check them, before
 // any work: an Error (not a ConfigError: nothing of the config is wrong) naming the path.
 void check_run(const PyScenario& s, int threads, const std::string& out) {
-  config_stage([&] { dist::bounded_threads(threads); });
+  config_stage([&] { parallel::bounded_threads(threads); });
   io::check_output_path(out, s.inputs(), {sweep::Journal::path_for(out)});
 }
 
@@ -173,20 +174,20 @@ py::dict run_sweep(const std::shared_ptr<PyScenario>& s, int threads, bool resum
   return sweep_outcome(r);
 }
 
-// Runs the config's [gsa] analysis as `phasmid gsa` does (config::run_gsa) into `out`; returns
+// Runs the config's [gsa] analysis as `phasmid gsa` does (gsa::run_gsa) into `out`; returns
 // the sweep's counts and the table the verb prints.
 py::dict run_gsa(const std::shared_ptr<PyScenario>& s, int threads, bool resume, const std::string& out, bool kept,
                  long stop_after) {
-  const config::GsaInputs in = config_stage([&] { return config::gsa_inputs(s->cfg, s->sets); });
+  const gsa::GsaInputs in = config_stage([&] { return config::gsa_inputs(s->cfg, s->sets); });
   check_run(*s, threads, out);
-  config::GsaOutcome r;
+  gsa::GsaOutcome r;
   {
     py::gil_scoped_release release;
-    r = config::run_gsa(in, sweep_options(threads, resume, out, stop_after), false);
+    r = gsa::run_gsa(in, sweep_options(threads, resume, out, stop_after), false);
   }
   if (!r.analysed) raise_unfinished("gsa", r.sweep, unfinished_tail("gsa", kept, r.sweep));
   py::dict d = sweep_outcome(r.sweep);
-  d["summary"] = config::gsa_summary(r.result);
+  d["summary"] = gsa::gsa_summary(r.result);
   return d;
 }
 

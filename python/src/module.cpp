@@ -11,16 +11,9 @@
 #include "build_info.hpp"
 #include "io/output_lock.hpp"
 #include "io/output_path.hpp"
+#include "output/run_file.hpp"
 #include "report/report.hpp"
 #include "solver/interrupt.hpp"
-
-namespace phasmid::app {
-// write_output.cpp records the command line; from Python there is none.
-const std::string& command_line() {
-  static const std::string text = phasmid::python::command_text();
-  return text;
-}
-}  // namespace phasmid::app
 
 namespace phasmid::python {
 namespace {
@@ -128,6 +121,8 @@ PYBIND11_MODULE(_core, m) {
   using namespace phasmid::python;
   m.doc() = "C++ core of the phasmid Python module; use the phasmid package (docs/python.md).";
   m.attr("__version__") = PHASMID_VERSION;
+  // The `command` attribute of the files the module writes: there is no command line.
+  phasmid::output::set_command_line(command_text());
   bind_errors(m);
   bind_scenario(m);
   bind_sensitivity(m);

@@ -4,7 +4,7 @@
 #include <optional>
 #include <set>
 
-#include "app/write_output.hpp"
+#include "output/run_file.hpp"
 #include "bindings.hpp"
 #include "common/units.hpp"
 #include "config/simulation_table.hpp"
@@ -45,7 +45,7 @@ struct Simulation {
   void save(const std::string& path) const {
     io::check_output_path(path, scenario->inputs());
     io::H5Writer w(path);
-    app::write_run_file(w, scenario->cfg, scenario->sets, *scenario->scenario);
+    output::write_run_file(w, scenario->cfg, scenario->sets, *scenario->scenario);
     run->write(w);
     w.commit();
   }

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "dist/executor.hpp"
+#include "parallel/executor.hpp"
 
 namespace phasmid::app {
 
@@ -24,7 +24,7 @@ inline void add_quiet(CLI::App& sub, bool& quiet) {
 inline void add_threads(CLI::App& sub, int& threads) {
   sub.add_option("-j,--threads", threads,
                  "worker threads (default: OMP_NUM_THREADS or all cores; per rank under mpirun: OMP_NUM_THREADS or 1)")
-      ->check(CLI::Range(0, dist::kMaxThreads));  // says the limit (NonNegativeNumber printed DBL_MAX in full)
+      ->check(CLI::Range(0, parallel::kMaxThreads));  // says the limit (NonNegativeNumber printed DBL_MAX in full)
 }
 inline void add_json(CLI::App& sub, bool& json) { sub.add_flag("--json", json, "print the results as JSON on stdout"); }
 

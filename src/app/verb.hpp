@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "output/run_file.hpp"
+
 namespace phasmid::app {
 
 struct Verb {
@@ -21,7 +23,7 @@ struct RegisterVerb {
   explicit RegisterVerb(Verb v) { verbs().push_back(std::move(v)); }
 };
 
-// The full command line as typed, for the HDF5 `command` attribute.
-const std::string& command_line();
+// The full command line as typed, for the HDF5 `command` attribute (main sets it).
+using output::command_line;
 
 }  // namespace phasmid::app

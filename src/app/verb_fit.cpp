@@ -10,8 +10,8 @@
 #include "app/verb.hpp"
 #include "app/write_output.hpp"
 #include "config/config.hpp"
-#include "dist/executor.hpp"
-#include "dist/session.hpp"
+#include "parallel/executor.hpp"
+#include "parallel/session.hpp"
 #include "config/fit_section.hpp"
 #include "fit/fit_run.hpp"
 #include "io/h5_file.hpp"
@@ -54,11 +54,11 @@ int run_fit_verb(const FitArgs& a) {
   const auto lock = lock_output(a.out, true);  // rank 0 only
   config::Config cfg = config::load_config(a.config);
   auto scenario = config::build_scenario(cfg, a.sets);
-  fit::FitSpec spec;
-  auto problem = scenario->make_fit(cfg, a.ov, spec);
+  fit::FitSpec spec = config::fit_spec(cfg, *scenario, a.ov);
+  auto problem = scenario->make_fit(spec);
   spec.optimizer.progress = !a.quiet;
   if (!a.profile.empty()) spec.profile = a.profile;
-  if (dist::rank() != 0) {  // an MPI worker: evaluates starts and profiles for rank 0
+  if (parallel::rank() != 0) {  // an MPI worker: evaluates starts and profiles for rank 0
     fit::run_fit(*problem, spec);
     return 0;
   }
@@ -73,8 +73,8 @@ int run_fit_verb(const FitArgs& a) {
   const fit::FitSummary& b = result.best();
   if (a.json) print_estimates_json(*problem, result);
   if (!a.quiet) std::cerr << fit::format_result(*problem, result) << "phasmid fit: -> " << a.out << "\n";
-  if (!a.quiet && dist::size() > 1)
-    std::cerr << "phasmid fit: starts per rank\n" << dist::format_work_summary(result.multistart.work, "starts");
+  if (!a.quiet && parallel::size() > 1)
+    std::cerr << "phasmid fit: starts per rank\n" << parallel::format_work_summary(result.multistart.work, "starts");
   if (!b.converged) {
     std::cerr << "phasmid fit: " << (b.usable ? "did not converge" : "failed") << " (" << b.termination
               << (b.message.empty() ? "" : ": " + b.message) << "); results in " << a.out << "\n";

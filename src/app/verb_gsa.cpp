@@ -9,8 +9,9 @@
 #include "app/verb.hpp"
 #include "app/write_output.hpp"
 #include "config/gsa_inputs.hpp"
-#include "dist/executor.hpp"
-#include "dist/session.hpp"
+#include "gsa/summary.hpp"
+#include "parallel/executor.hpp"
+#include "parallel/session.hpp"
 #include "io/output_path.hpp"
 #include "sweep/sweep_runner.hpp"
 
@@ -34,16 +35,16 @@ bool sweep_already_done(const GsaArgs& a) {
 
 int run(const GsaArgs& a) {
   io::check_output_path(a.out, {a.config},
-                        {sweep::Journal::path_for(a.out), config::sweep_file_for(a.out), config::sweep_file_for(a.out) + ".tmp"});
+                        {sweep::Journal::path_for(a.out), gsa::sweep_file_for(a.out), gsa::sweep_file_for(a.out) + ".tmp"});
   // Rank 0, before OUT is read or its journal opened, held through the analysis step.
   const auto lock = lock_output(a.out);
-  const config::GsaInputs in = config::gsa_inputs(config::load_config(a.config), a.sets);
+  const gsa::GsaInputs in = config::gsa_inputs(config::load_config(a.config), a.sets);
   const bool sweep_done = sweep_already_done(a);
-  if (sweep_done && dist::rank() != 0) return 0;  // MPI worker rank: rank 0 analyses
+  if (sweep_done && parallel::rank() != 0) return 0;  // MPI worker rank: rank 0 analyses
   sweep::SweepOptions o;
   o.output = a.out, o.resume = a.resume, o.threads = a.threads, o.stop_after = a.stop_after;
   o.progress = !a.quiet, o.handle_signals = true, o.command = command_line();
-  const config::GsaOutcome r = config::run_gsa(in, o, sweep_done);
+  const gsa::GsaOutcome r = gsa::run_gsa(in, o, sweep_done);
   const sweep::SweepOutcome& s = r.sweep;
   if (!sweep_done && s.worker) return 0;
   if (!r.analysed) return report_unfinished_sweep("gsa", s, "design points", "phasmid gsa " + a.config + " -o " + a.out);
@@ -51,7 +52,7 @@ int run(const GsaArgs& a) {
   if (!sweep_done)
     std::cerr << "phasmid gsa: " << s.n_points << " design points (" << s.n_failed << " failed, " << s.n_recovered
               << " resumed) on " << s.executor << " in " << s.wall_seconds << " s\n";
-  std::cout << config::gsa_summary(r.result);
+  std::cout << gsa::gsa_summary(r.result);
   std::cerr << "phasmid gsa: " << r.result.method << " analysis of " << r.result.features.size() << " features -> " << a.out << "\n";
   return 0;
 }

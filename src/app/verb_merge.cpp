@@ -4,6 +4,7 @@
 
 #include "app/verb.hpp"
 #include "app/write_output.hpp"
+#include "config/sweep_inputs.hpp"
 #include "io/output_path.hpp"
 #include "sweep/sweep_shard.hpp"
 
@@ -18,7 +19,10 @@ struct MergeArgs {
 int run(const MergeArgs& a) {
   io::check_output_path(a.out, a.parts);
   const auto lock = lock_output(a.out);
-  sweep::MergeOutcome r = sweep::merge_shards(a.parts, a.out, command_line());
+  const auto inputs_of = [](const std::string& text, const std::string& path, const std::vector<std::string>& sets) {
+    return config::sweep_inputs(config::parse_config(text, path), sets);
+  };
+  sweep::MergeOutcome r = sweep::merge_shards(a.parts, a.out, command_line(), inputs_of);
   if (!a.quiet)
     std::cerr << "phasmid merge: " << r.n_shards << " shards, " << r.n_points << " points (" << r.n_failed
               << " failed) -> " << a.out << "\n";

@@ -18,15 +18,27 @@ struct ModelsArgs {
   bool json = false;
 };
 
+// The models first, then under their own heading the analytic test problems.
 void list_kinds(bool json) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const auto& k : scenario::model_kinds()) {
-    std::string keys;
-    for (const auto& key : k.keys) keys += (keys.empty() ? "" : ", ") + key;
-    if (json) out.push_back({{"type", k.name}, {"description", k.description}, {"keys", k.keys}});
-    else std::cout << fmt::format("{:<18} {}\n{:<18} [model] keys: {}\n", k.name, k.description, "", keys.empty() ? "none" : keys);
+  using scenario::KindCategory;
+  if (json) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& k : scenario::model_kinds())
+      out.push_back({{"type", k.name}, {"description", k.description}, {"keys", k.keys},
+                     {"category", scenario::category_name(k.category)}});
+    std::cout << out.dump(2) << "\n";
+    return;
   }
-  if (json) std::cout << out.dump(2) << "\n";
+  for (const KindCategory c : {KindCategory::Model, KindCategory::TestProblem}) {
+    std::cout << (c == KindCategory::Model ? "Models:\n"
+                                            : "\nAnalytic test problems (known answers, for testing the methods):\n");
+    for (const auto& k : scenario::model_kinds()) {
+      if (k.category != c) continue;
+      std::string keys;
+      for (const auto& key : k.keys) keys += (keys.empty() ? "" : ", ") + key;
+      std::cout << fmt::format("{:<18} {}\n{:<18} [model] keys: {}\n", k.name, k.description, "", keys.empty() ? "none" : keys);
+    }
+  }
 }
 
 void list_features(const ModelsArgs& a) {

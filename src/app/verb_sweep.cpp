@@ -9,7 +9,7 @@
 #include "app/verb.hpp"
 #include "app/write_output.hpp"
 #include "config/sweep_inputs.hpp"
-#include "dist/executor.hpp"
+#include "parallel/executor.hpp"
 #include "io/h5_file.hpp"
 #include "io/output_path.hpp"
 #include "sweep/sweep_store.hpp"
@@ -69,7 +69,7 @@ int run(const SweepArgs& a) {
   if (!a.quiet)
     std::cerr << "phasmid sweep: " << r.n_points << " points" << (a.shard.empty() ? "" : " of shard " + a.shard) << " (" << r.n_failed << " failed, " << r.n_recovered
               << " resumed) on " << r.executor << " in " << r.wall_seconds << " s -> " << r.output << "\n";
-  if (!a.quiet && r.distributed) std::cerr << "phasmid sweep: work per rank\n" << dist::format_work_summary(r.work, "points");
+  if (!a.quiet && r.distributed) std::cerr << "phasmid sweep: work per rank\n" << parallel::format_work_summary(r.work, "points");
   return 0;
 }
 

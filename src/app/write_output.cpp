@@ -4,26 +4,19 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "app/verb.hpp"
-#include "dist/executor.hpp"
-#include "dist/session.hpp"
+#include "parallel/executor.hpp"
+#include "parallel/session.hpp"
 
 namespace phasmid::app {
 
 std::unique_ptr<io::OutputLock> lock_output(const std::string& out, bool release_workers) {
-  if (dist::rank() != 0) return nullptr;
+  if (parallel::rank() != 0) return nullptr;
   try {
     return std::make_unique<io::OutputLock>(out);
   } catch (...) {
-    if (release_workers) dist::release_workers();
+    if (release_workers) parallel::release_workers();
     throw;
   }
-}
-
-void write_run_file(io::H5Writer& w, const config::Config& cfg, const std::vector<std::string>& sets,
-                    const scenario::Scenario& scenario) {
-  w.write_run_info({config::resolved_config_text(cfg, sets), command_line()});
-  w.set_attribute("/", "model", scenario.kind());
 }
 
 void print_features_json(const std::vector<features::Feature>& features) {

@@ -1,14 +1,15 @@
 #pragma once
-// What every verb writes the same way: the root attributes of an output file (the resolved
-// config, the command line, the model kind) and features as JSON.
+// What every verb does the same way around its output: the output's lock, features as JSON, the
+// line of an unfinished sweep. The root attributes of output files, which the Python module
+// writes too, are output/run_file.hpp's.
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "config/config.hpp"
 #include "features/features.hpp"
 #include "io/h5_file.hpp"
 #include "io/output_lock.hpp"
+#include "output/run_file.hpp"
 #include "sweep/sweep_runner.hpp"
 
 namespace phasmid::app {
@@ -20,9 +21,8 @@ namespace phasmid::app {
 // sweep, fit), so that the job ends with the one line instead of MPI_Abort.
 std::unique_ptr<io::OutputLock> lock_output(const std::string& out, bool release_workers = false);
 
-// Root attributes phasmid_version, created, config (with the --set overrides), command, model.
-void write_run_file(io::H5Writer& w, const config::Config& cfg, const std::vector<std::string>& sets,
-                    const scenario::Scenario& scenario);
+// The root attributes of output files (output/run_file.hpp).
+using output::write_run_file;
 // A JSON list of {name, value, unit} on stdout (null for values that are not finite).
 void print_features_json(const std::vector<features::Feature>& features);
 // For a sweep that did not finish (signal or --stop-after): one line on stderr saying how much

@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "config/simulation_table.hpp"
+#include "config/model_section.hpp"
 #include "config/triggers.hpp"
 #include "model/ode_model.hpp"
 #include "scenario/ode_scenario.hpp"
@@ -39,7 +40,7 @@ std::unique_ptr<scenario::Scenario> make_from_model_section(const Config& cfg) {
   std::set<std::string> keys = kind->keys;
   keys.insert({"type", "description"});
   check_keys(cfg, mt, "model", keys);
-  return kind->make(scenario::ModelSection(cfg, mt));
+  return kind->make(TomlModelSection(cfg, mt));
 }
 
 // A [simulation] table of unit = absolute tolerance (atol_by_unit, stiff_part_atol_by_unit).

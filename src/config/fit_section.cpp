@@ -7,6 +7,8 @@
 #include <set>
 
 #include "common/error.hpp"
+#include "config/cruse_section.hpp"
+#include "model/ode_model.hpp"
 #include "build_info.hpp"
 
 namespace phasmid::fit {
@@ -279,6 +281,18 @@ void check_horizon(const config::Config& cfg, const FitSpec& spec) {
 }
 }  // namespace
 
+FeatureTarget feature_target(const config::Config& cfg, const toml::table& t) {
+  FeatureTarget f;
+  f.origin = where(cfg, t);
+  const toml::node* nn = t.get("name");
+  if (!nn || !t.get("value") || !t.get("tolerance")) throw Error(f.origin + ": [[fit.feature]] needs name, value and tolerance");
+  f.feature = text(cfg, *nn, "name");
+  f.origin = where(cfg, *nn);
+  f.value = number(cfg, *t.get("value"), "value");
+  f.tolerance = number(cfg, *t.get("tolerance"), "tolerance");
+  return f;
+}
+
 FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, const FitOverrides& ov) {
   FitSpec spec;
   config::SimulationSettings sim = config::simulation_settings(cfg);
@@ -304,15 +318,7 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
   for (auto* t : fit_tables(cfg, fit, "feature")) {
     check_keys(cfg, *t, "fit.feature", {"name", "value", "tolerance", "set"});
     if (!in_target_set(cfg, *t, spec.target_set)) continue;
-    FeatureTarget f;
-    f.origin = where(cfg, *t);
-    const toml::node* nn = t->get("name");
-    if (!nn || !t->get("value") || !t->get("tolerance")) throw Error(f.origin + ": [[fit.feature]] needs name, value and tolerance");
-    f.feature = text(cfg, *nn, "name");
-    f.origin = where(cfg, *nn);
-    f.value = number(cfg, *t->get("value"), "value");
-    f.tolerance = number(cfg, *t->get("tolerance"), "tolerance");
-    spec.targets.features.push_back(f);
+    spec.targets.features.push_back(feature_target(cfg, *t));
   }
   for (auto* t : fit_tables(cfg, fit, "switch")) {
     check_keys(cfg, *t, "fit.switch", {"angle", "time_ms", "angle_deg", "angle_tolerance_deg", "velocity_tolerance_deg_s",
@@ -388,3 +394,16 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
 }
 
 }  // namespace phasmid::fit
+
+namespace phasmid::config {
+
+fit::FitSpec fit_spec(const Config& cfg, const scenario::Scenario& scenario, const fit::FitOverrides& overrides) {
+  if (scenario.kind() == "cruse1980") return parse_cruse_fit(cfg, scenario.parameters(), overrides);
+  const model::OdeModel* model = scenario.ode_model();
+  if (!model) return {};
+  fit::FitSpec spec = fit::load_fit_spec(cfg, *model, overrides);
+  spec.problem.solver.progress = false;
+  return spec;
+}
+
+}  // namespace phasmid::config

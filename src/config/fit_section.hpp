@@ -18,12 +18,14 @@ void check_overrides(const FitOverrides& overrides);
 // `model` must be the model built from the same config (nominal values default to its values).
 FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, const FitOverrides& overrides = {});
 
-// Pieces of the [fit] parser for model-specific loaders (cruse::load_cruse_fit).
+// Pieces of the [fit] parser for model-specific parsers (config::parse_cruse_fit).
 // The [fit] table (empty if absent); [[fit.KEY]] / [fit.KEY] tables; whether a target table
 // belongs to the chosen target set (its `set`, default "default").
 const toml::table& fit_section(const config::Config& cfg);
 std::vector<const toml::table*> fit_tables(const config::Config& cfg, const toml::table& fit, const std::string& key);
 bool in_target_set(const config::Config& cfg, const toml::table& t, const std::string& set);
+// The name, value and tolerance of a [[fit.feature]] table (its origin: the name's file:line).
+FeatureTarget feature_target(const config::Config& cfg, const toml::table& t);
 // The keys every model shares: optimiser and its stop rules, multistart, absolute_sigma,
 // profiles, output_dt_ms, target_set (checked against the sets named by the [[fit.KEY]]
 // tables of `target_keys`) and the parameters (--parameters, parameter_table,
@@ -38,3 +40,13 @@ void load_fit_common(const config::Config& cfg, const toml::table& fit, const Fi
 std::string resolve_path(const config::Config& cfg, const std::string& path);
 
 }  // namespace phasmid::fit
+
+namespace phasmid::config {
+
+// The fit spec of the config's [fit] for `scenario` (built from the same config): an ODE
+// kind's through fit::load_fit_spec, cruse1980's through parse_cruse_fit
+// (config/cruse_section.hpp). A kind without a [fit] parser gets an empty spec, and its
+// make_fit says why it has no fit. The scenario's make_fit takes the result.
+fit::FitSpec fit_spec(const Config& cfg, const scenario::Scenario& scenario, const fit::FitOverrides& overrides);
+
+}  // namespace phasmid::config

@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "common/nearest.hpp"
+
 namespace phasmid::config {
 
 struct Config {
@@ -48,8 +50,8 @@ bool boolean(const Config& cfg, const toml::node& node, const std::string& key);
 // key and the allowed keys.
 void check_keys(const Config& cfg, const toml::table& table, const std::string& section,
                 const std::set<std::string>& allowed);
-// The element of `candidates` closest to `word` by edit distance ("" if none is close).
-std::string nearest(const std::string& word, const std::vector<std::string>& candidates);
+// The element of `candidates` closest to `word` by edit distance (common/nearest.hpp).
+using phasmid::nearest;
 
 // Dotted names of a table's leaves: quoted dotted keys ("middle.fti.b_v" = 12.5) and TOML
 // dotted keys or sub-tables (middle.fti.b_v = 12.5) give the same name.

@@ -10,6 +10,7 @@
 #include "cruse/cruse1980_model.hpp"
 #include "cruse/cruse1980_output.hpp"
 #include "cruse/cruse1980_sweep.hpp"
+#include "fit/parameter_table.hpp"
 #include "io/h5_file.hpp"
 
 namespace phasmid::cruse {
@@ -220,64 +221,6 @@ void CruseFitProblem::write_model_output(io::H5Writer& out, const double* x, boo
   const Parameters p = parameters_at(x);
   const Trajectory run = simulate(p);
   write_run_contents(out, p, run, measure(run, p));
-}
-
-CruseFit load_cruse_fit(const Parameters& base, const config::Config& cfg, const fit::FitOverrides& ov) {
-  using config::check_keys;
-  using config::number;
-  using config::where;
-  CruseFit out;
-  if (!ov.data.empty() || !ov.data_format.empty())
-    throw Error("--data: the cruse1980 model has no kinematic channels; give [[fit.feature]] targets");
-  const toml::table& fit = fit::fit_section(cfg);
-  check_keys(cfg, fit, "fit",
-             {"description", "optimizer", "max_evaluations", "function_tolerance", "parameter_tolerance", "multistart",
-              "sampling", "seed", "threads", "absolute_sigma", "target_set", "parameter_table", "parameters", "feature",
-              "start_positions", "cycles"});
-  fit::FitSpec& spec = out.spec;
-  // Default optimiser: derivative-free (the config or --optimizer may choose another NLopt method).
-  spec.optimizer.method = "nlopt:BOBYQA";
-  fit::load_fit_common(cfg, fit, ov, {"feature"},
-                       [&](const std::string& id) {
-                         for (const auto& np : base.all())
-                           if (fit::parameter_id_matches(id, np.name)) return np.value;
-                         return 0.0;
-                       },
-                       spec);
-  CruseFitSettings settings;
-  if (auto n = fit.get("start_positions")) {
-    auto a = n->as_array();
-    if (!a) throw Error(where(cfg, *n) + ": start_positions must be an array of Table 2 positions (1..10)");
-    settings.start_positions.clear();
-    for (auto& e : *a) {
-      auto v = e.value<int64_t>();
-      if (!v || *v < 1 || *v > 10) throw Error(where(cfg, e) + ": start_positions entries must be integers 1..10");
-      settings.start_positions.push_back(static_cast<int>(*v));
-    }
-  }
-  if (auto n = fit.get("cycles")) settings.cycles = number(cfg, *n, "cycles");
-  std::vector<CruseTarget> targets;
-  for (auto* t : fit::fit_tables(cfg, fit, "feature")) {
-    check_keys(cfg, *t, "fit.feature", {"name", "value", "tolerance", "period_ms", "set"});
-    if (!fit::in_target_set(cfg, *t, spec.target_set)) continue;
-    CruseTarget c;
-    c.origin = where(cfg, *t);
-    const toml::node* nn = t->get("name");
-    if (!nn || !t->get("value") || !t->get("tolerance")) throw Error(c.origin + ": [[fit.feature]] needs name, value and tolerance");
-    c.feature = config::text(cfg, *nn, "name");
-    c.origin = where(cfg, *nn);
-    c.value = number(cfg, *t->get("value"), "value");
-    c.tolerance = number(cfg, *t->get("tolerance"), "tolerance");
-    if (auto n = t->get("period_ms")) c.period_ms = number(cfg, *n, "period_ms");
-    targets.push_back(c);
-    spec.targets.features.push_back(
-        {c.period_ms > 0 ? fmt::format("{} @{}ms", c.feature, c.period_ms) : c.feature, c.value, c.tolerance, c.origin});
-  }
-  if (targets.empty()) throw Error(cfg.path + ": the fit has no targets (give [[fit.feature]] in [fit])");
-  spec.optimizer.progress_label = "fit";
-  out.problem = std::make_unique<CruseFitProblem>(base, spec.parameters, targets, settings);
-  fit::check_optimizer(*out.problem, spec.optimizer);
-  return out;
 }
 
 }  // namespace phasmid::cruse

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "cruse/cruse1980_features.hpp"
-#include "config/fit_section.hpp"
+#include "fit/fit_spec.hpp"
 #include "fit/residual_problem.hpp"
 
 namespace phasmid::cruse {
@@ -75,12 +75,11 @@ class CruseFitProblem : public fit::ResidualProblem {
   std::vector<std::vector<std::string>> tied_;   // per estimated parameter: the names it sets
 };
 
-// The fit of a cruse1980 scenario's [fit] section: `base` holds the scenario's parameters
-// (after [parameters] and --set). Throws Error (one line, naming file:line) on bad input.
-struct CruseFit {
-  fit::FitSpec spec;
-  std::unique_ptr<CruseFitProblem> problem;
+// What [fit] gives a cruse1980 fit besides the common FitSpec (FitSpec::kind; read by
+// config/cruse_section.hpp): its targets and how each is run.
+struct CruseFitSpec : fit::KindFitSpec {
+  std::vector<CruseTarget> targets;
+  CruseFitSettings settings;
 };
-CruseFit load_cruse_fit(const Parameters& base, const config::Config& cfg, const fit::FitOverrides& overrides);
 
 }  // namespace phasmid::cruse

@@ -9,12 +9,12 @@
 #include <chrono>
 
 #include "common/error.hpp"
-#include "config/toml_util.hpp"
 #include "cruse/cruse1980_features.hpp"
 #include "cruse/cruse1980_fit.hpp"
 #include "cruse/cruse1980_model.hpp"
 #include "cruse/cruse1980_output.hpp"
 #include "cruse/cruse1980_sweep.hpp"
+#include "fit/optimizer.hpp"
 #include "scenario/registry.hpp"
 
 namespace phasmid::scenario {
@@ -100,11 +100,14 @@ class CruseScenario : public Scenario {
   std::unique_ptr<ScenarioRun> run(const std::vector<double>& p, const RunSettings&) const override {
     return std::make_unique<CruseRun>(at(p), periods_);
   }
-  std::unique_ptr<fit::ResidualProblem> make_fit(const config::Config& cfg, const fit::FitOverrides& overrides,
-                                                 fit::FitSpec& spec) const override {
-    cruse::CruseFit cf = cruse::load_cruse_fit(at(params_.values()), cfg, overrides);
-    spec = std::move(cf.spec);
-    return std::move(cf.problem);
+  // `spec.kind` holds the cruse1980 targets (config/cruse_section.hpp reads them from [fit]).
+  std::unique_ptr<fit::ResidualProblem> make_fit(const fit::FitSpec& spec) const override {
+    const auto* own = dynamic_cast<const cruse::CruseFitSpec*>(spec.kind.get());
+    if (!own) throw Error("cruse1980: the fit spec has no cruse1980 targets (read [fit] with config::fit_spec)");
+    auto problem = std::make_unique<cruse::CruseFitProblem>(at(params_.values()), spec.parameters, own->targets,
+                                                            own->settings);
+    fit::check_optimizer(*problem, spec.optimizer);
+    return problem;
   }
 
  private:
@@ -115,14 +118,9 @@ class CruseScenario : public Scenario {
 
 std::vector<double> stability_periods(const ModelSection& s) {
   std::vector<double> periods;
-  const toml::node* n = s.node("stability_periods_ms");
-  if (!n) return periods;
-  const toml::array* a = n->as_array();
-  if (!a || a->empty()) throw Error(s.where("stability_periods_ms") + ": stability_periods_ms must be a list of periods (ms)");
-  for (const auto& e : *a) {
-    double v = config::number(s.config(), e, "stability_periods_ms");
-    if (!(v > 0)) throw Error(config::where(s.config(), e) + ": stability_periods_ms: a period must be > 0 ms");
-    periods.push_back(v);
+  for (const auto& e : s.numbers("stability_periods_ms", "a list of periods (ms)")) {
+    if (!(e.value > 0)) throw Error(e.where + ": stability_periods_ms: a period must be > 0 ms");
+    periods.push_back(e.value);
   }
   return periods;
 }

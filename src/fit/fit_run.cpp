@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "common/error.hpp"
-#include "dist/bytes.hpp"
+#include "parallel/bytes.hpp"
 #include "io/h5_file.hpp"
 
 namespace phasmid::fit {
@@ -15,24 +15,24 @@ namespace phasmid::fit {
 namespace {
 // Profiles as tasks, two per profiled parameter (the halves below and above the optimum):
 // id 2k + side for the k-th profile; the input carries what only the master knows.
-std::vector<dist::Task> profile_tasks(const std::vector<size_t>& prof, const FitSummary& best, double sigma2,
+std::vector<parallel::Task> profile_tasks(const std::vector<size_t>& prof, const FitSummary& best, double sigma2,
                                       const std::vector<std::vector<double>>& grids) {
-  std::vector<dist::Task> tasks;
+  std::vector<parallel::Task> tasks;
   for (size_t k = 0; k < prof.size(); ++k)
     for (std::uint64_t side : {0, 1})
-      tasks.push_back({2 * k + side, dist::ByteWriter().u64(prof[k]).u64(side).f64s(best.x).f64(best.final_cost)
+      tasks.push_back({2 * k + side, parallel::ByteWriter().u64(prof[k]).u64(side).f64s(best.x).f64(best.final_cost)
                                          .f64(sigma2).f64s(grids[k]).take()});
   return tasks;
 }
 
 // Runs the profile tasks on `executor` (on every rank; with no tasks it only ends the phase).
 std::vector<Profile> run_profiles(const ResidualProblem& problem, const FitSpec& spec, const std::vector<size_t>& prof,
-                                  const std::vector<dist::Task>& tasks, const std::vector<std::vector<double>>& grids,
-                                  dist::Executor& executor) {
+                                  const std::vector<parallel::Task>& tasks, const std::vector<std::vector<double>>& grids,
+                                  parallel::Executor& executor) {
   std::vector<Profile> profiles;
   for (size_t k = 0; k < grids.size(); ++k) profiles.push_back(empty_profile(problem, prof[k], grids[k].size()));
-  const dist::Evaluate evaluate = [&](const dist::Task& t, int) {
-    dist::ByteReader in(t.input);
+  const parallel::Evaluate evaluate = [&](const parallel::Task& t, int) {
+    parallel::ByteReader in(t.input);
     const size_t j = in.u64();
     const int dir = in.u64() ? +1 : -1;
     const std::vector<double> x_opt = in.f64s();
@@ -41,11 +41,11 @@ std::vector<Profile> run_profiles(const ResidualProblem& problem, const FitSpec&
     Profile pr = empty_profile(problem, j, grid.size());
     profile_walk(problem, x_opt, cost_opt, j, sigma2, grid, dir, spec.optimizer, pr);
     std::vector<double> conv(pr.converged.begin(), pr.converged.end());
-    return dist::ByteWriter().f64s(pr.values).f64s(pr.cost).f64s(pr.delta_chi2).f64s(conv).take();
+    return parallel::ByteWriter().f64s(pr.values).f64s(pr.cost).f64s(pr.delta_chi2).f64s(conv).take();
   };
-  const dist::Collect collect = [&](std::size_t id, std::string bytes) {
+  const parallel::Collect collect = [&](std::size_t id, std::string bytes) {
     Profile& pr = profiles.at(id / 2);
-    dist::ByteReader in(bytes);
+    parallel::ByteReader in(bytes);
     const auto values = in.f64s(), cost = in.f64s(), delta = in.f64s(), conv = in.f64s();
     for (size_t i : profile_side(id % 2 ? +1 : -1, pr.values.size())) {
       pr.values[i] = values.at(i);
@@ -72,14 +72,14 @@ FitResult run_fit(const ResidualProblem& problem, const FitSpec& spec) {
     throw Error("profile: profile likelihoods re-optimise with Ceres, which needs Jacobians (" +
                 problem.no_jacobian_reason() + ")");
   FitResult res;
-  auto executor = dist::make_executor(spec.multistart.threads);
+  auto executor = parallel::make_executor(spec.multistart.threads);
   res.multistart = multistart(problem, spec.optimizer, spec.multistart, *executor);
   if (!executor->is_master()) {  // an MPI worker: serve the profile phase too, report nothing
     run_profiles(problem, spec, {}, {}, {}, *executor);
     res.worker = true;
     return res;
   }
-  std::vector<dist::Task> tasks;
+  std::vector<parallel::Task> tasks;
   std::vector<std::vector<double>> grids;
   const FitSummary& b = res.best();
   try {
@@ -98,7 +98,7 @@ FitResult run_fit(const ResidualProblem& problem, const FitSpec& spec) {
       res.uncertainty.correlation = Eigen::MatrixXd::Constant(n, n, NAN);
     }
   } catch (...) {
-    dist::release_workers();
+    parallel::release_workers();
     throw;
   }
   res.profiles = run_profiles(problem, spec, prof, tasks, grids, *executor);

@@ -1,7 +1,7 @@
 #pragma once
 // A whole fit as `phasmid fit` runs it: multistart optimisation, uncertainty at the best
 // optimum, profile likelihoods; and the HDF5 layout of the result (docs/fit.md). Starts and
-// profile halves are tasks of a dist::Executor: OpenMP threads, or MPI ranks under mpirun
+// profile halves are tasks of a parallel::Executor: OpenMP threads, or MPI ranks under mpirun
 // (every rank calls run_fit; rank 0 gets the result, docs/cluster.md).
 #include <string>
 #include <vector>

@@ -1,8 +1,10 @@
 #pragma once
 // What a fit does (docs/fit.md): the estimated parameters, targets, optimiser, multistart and
 // profiles (FitSpec), and the command-line overrides of `phasmid fit` (FitOverrides).
-// config/fit_section.hpp reads them from a config's [fit] section.
+// config/fit_section.hpp reads them from a config's [fit] section; a scenario's make_fit takes
+// the FitSpec so read and never sees the config.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +14,13 @@
 #include "fit/optimizer.hpp"
 
 namespace phasmid::fit {
+
+// What a model kind's own [fit] keys give beyond the FitSpec (e.g. cruse1980's starting
+// positions and period-bound targets): the config layer's parser for that kind fills a type
+// derived from this one, and the kind's make_fit takes it back.
+struct KindFitSpec {
+  virtual ~KindFitSpec() = default;
+};
 
 struct FitSpec {
   std::vector<FitParameter> parameters;
@@ -26,6 +35,7 @@ struct FitSpec {
   double output_dt_ms = 1.0;         // best-fit trajectory
   std::string target_set = "default";
   std::vector<std::string> inputs;   // data and parameter files read
+  std::shared_ptr<const KindFitSpec> kind;  // the kind's own settings, if it has any
 };
 
 // Unset (nullopt / empty) means the [fit] section's value; a given value is checked by

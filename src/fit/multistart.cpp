@@ -7,12 +7,12 @@
 #include <limits>
 
 #include "common/error.hpp"
-#include "dist/bytes.hpp"
+#include "parallel/bytes.hpp"
 
 namespace phasmid::fit {
 
 std::string encode_summary(const FitSummary& s) {
-  dist::ByteWriter w;
+  parallel::ByteWriter w;
   w.u64(s.converged).u64(s.usable).str(s.optimizer).str(s.termination).str(s.message);
   w.f64s(s.x_start).f64s(s.x).f64(s.initial_cost).f64(s.final_cost);
   w.u64(static_cast<std::uint64_t>(s.iterations)).u64(static_cast<std::uint64_t>(s.evaluations));
@@ -22,7 +22,7 @@ std::string encode_summary(const FitSummary& s) {
 }
 
 FitSummary decode_summary(const std::string& bytes) {
-  dist::ByteReader r(bytes);
+  parallel::ByteReader r(bytes);
   FitSummary s;
   s.converged = r.u64() != 0;
   s.usable = r.u64() != 0;
@@ -45,12 +45,12 @@ FitSummary decode_summary(const std::string& bytes) {
 }
 
 MultistartResult multistart(const ResidualProblem& problem, const OptimizerOptions& options, const MultistartOptions& ms) {
-  auto executor = dist::make_openmp_executor(ms.threads);
+  auto executor = parallel::make_openmp_executor(ms.threads);
   return multistart(problem, options, ms, *executor);
 }
 
 MultistartResult multistart(const ResidualProblem& problem, const OptimizerOptions& options, const MultistartOptions& ms,
-                            dist::Executor& executor) {
+                            parallel::Executor& executor) {
   MultistartResult out;
   const size_t n = std::max<size_t>(ms.starts, 1);
   std::vector<std::vector<double>> starts = {problem.start()};
@@ -65,7 +65,7 @@ MultistartResult multistart(const ResidualProblem& problem, const OptimizerOptio
   }
   OptimizerOptions o = options;
   o.progress = false;  // one line for all starts instead
-  const dist::Evaluate evaluate = [&](const dist::Task& t, int) {
+  const parallel::Evaluate evaluate = [&](const parallel::Task& t, int) {
     FitSummary s;
     try {
       s = optimize(problem, starts[t.id], o);
@@ -81,14 +81,14 @@ MultistartResult multistart(const ResidualProblem& problem, const OptimizerOptio
   const bool tty = options.progress && isatty(STDERR_FILENO);
   size_t done = 0;
   double best = std::numeric_limits<double>::infinity();
-  const dist::Collect collect = [&](std::size_t i, std::string bytes) {
+  const parallel::Collect collect = [&](std::size_t i, std::string bytes) {
     out.runs[i] = decode_summary(bytes);
     ++done;
     if (out.runs[i].usable && out.runs[i].final_cost < best) best = out.runs[i].final_cost;
     if (tty) std::fprintf(stderr, "\r%s [%s] multistart %zu/%zu done, best cost %.6g   ", options.progress_label.c_str(),
                           o.method.c_str(), done, n, best);
   };
-  std::vector<dist::Task> tasks;
+  std::vector<parallel::Task> tasks;
   for (size_t i = 0; i < n; ++i) tasks.push_back({i, {}});
   out.work = executor.run(tasks, evaluate, collect, [] { return true; });
   if (tty) std::fprintf(stderr, "\n");

@@ -2,10 +2,10 @@
 
 #include <fmt/format.h>
 
-#include "config/fit_section.hpp"
 #include "features/joint_range.hpp"
 #include "features/missing_features.hpp"
 #include "fit/fit_problem.hpp"
+#include "fit/fit_spec.hpp"
 #include "io/trajectory_writer.hpp"
 
 namespace phasmid::scenario {
@@ -114,11 +114,7 @@ std::vector<std::pair<std::string, std::string>> OdeScenario::run_time_parameter
   return out;
 }
 
-std::unique_ptr<fit::ResidualProblem> OdeScenario::make_fit(const config::Config& cfg,
-                                                            const fit::FitOverrides& overrides,
-                                                            fit::FitSpec& spec) const {
-  spec = fit::load_fit_spec(cfg, *model_, overrides);
-  spec.problem.solver.progress = false;
+std::unique_ptr<fit::ResidualProblem> OdeScenario::make_fit(const fit::FitSpec& spec) const {
   return std::make_unique<fit::FitProblem>(*model_, spec.parameters, spec.targets, spec.problem);
 }
 

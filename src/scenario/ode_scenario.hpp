@@ -27,8 +27,7 @@ class OdeScenario : public Scenario {
   std::vector<features::Feature> evaluate_features(const std::vector<double>& p,
                                                    const RunSettings& settings) const override;
   std::vector<std::pair<std::string, std::string>> run_time_parameters() const override;
-  std::unique_ptr<fit::ResidualProblem> make_fit(const config::Config& cfg, const fit::FitOverrides& overrides,
-                                                 fit::FitSpec& spec) const override;
+  std::unique_ptr<fit::ResidualProblem> make_fit(const fit::FitSpec& spec) const override;
   const model::OdeModel* ode_model() const override { return model_.get(); }
 
   // Hands the model over (tests and benchmarks that drive the solver directly).

@@ -1,20 +1,27 @@
 #include "scenario/registry.hpp"
 
 #include "common/error.hpp"
+#include "common/nearest.hpp"
 
 namespace phasmid::scenario {
 
 #define PHASMID_MODEL_KIND(factory) ModelKind factory();
+#define PHASMID_TEST_PROBLEM(factory) ModelKind factory();
 #include "scenario/kinds/builtin_kinds.def"
 #undef PHASMID_MODEL_KIND
+#undef PHASMID_TEST_PROBLEM
 
 namespace {
 std::vector<ModelKind>& registry() {
   static std::vector<ModelKind> kinds = [] {
     std::vector<ModelKind> k;
 #define PHASMID_MODEL_KIND(factory) k.push_back(factory());
+#define PHASMID_TEST_PROBLEM(factory) \
+  k.push_back(factory());             \
+  k.back().category = KindCategory::TestProblem;
 #include "scenario/kinds/builtin_kinds.def"
 #undef PHASMID_MODEL_KIND
+#undef PHASMID_TEST_PROBLEM
     return k;
   }();
   return kinds;
@@ -22,6 +29,8 @@ std::vector<ModelKind>& registry() {
 }  // namespace
 
 const std::vector<ModelKind>& model_kinds() { return registry(); }
+
+std::string category_name(KindCategory c) { return c == KindCategory::TestProblem ? "test_problem" : "model"; }
 
 RegisterModelKind::RegisterModelKind(ModelKind kind) { registry().push_back(std::move(kind)); }
 
@@ -31,30 +40,10 @@ const ModelKind& model_kind(const std::string& name) {
     if (k.name == name) return k;
     names.push_back(k.name);
   }
-  std::string list, near = config::nearest(name, names);
+  std::string list, near = nearest(name, names);
   for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
   throw Error("unknown model type '" + name + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
               "; the model types are " + list);
-}
-
-std::string ModelSection::where(const std::string& key) const {
-  const toml::node* n = node(key);
-  return n ? config::where(cfg_, *n) : config::where(cfg_, table_);
-}
-
-std::string ModelSection::text(const std::string& key, const std::string& fallback) const {
-  const toml::node* n = node(key);
-  return n ? config::text(cfg_, *n, key) : fallback;
-}
-
-double ModelSection::number(const std::string& key, double fallback) const {
-  const toml::node* n = node(key);
-  return n ? config::number(cfg_, *n, key) : fallback;
-}
-
-bool ModelSection::boolean(const std::string& key, bool fallback) const {
-  const toml::node* n = node(key);
-  return n ? config::boolean(cfg_, *n, key) : fallback;
 }
 
 std::string ModelSection::choice(const std::string& key, const std::string& fallback,

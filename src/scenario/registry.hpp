@@ -10,38 +10,50 @@
 #include <string>
 #include <vector>
 
-#include "config/toml_util.hpp"
 #include "scenario/scenario.hpp"
 
 namespace phasmid::scenario {
 
 // The [model] table of a config, for a kind's factory: typed reads whose errors name file:line
-// and the key. Keys outside the kind's declared ones were already refused.
+// and the key. Keys outside the kind's declared ones were already refused. The config layer
+// implements it over the parsed file (config/model_section.hpp), so that the kinds read their
+// keys without knowing TOML or the config layer.
 class ModelSection {
  public:
-  ModelSection(const config::Config& cfg, const toml::table& table) : cfg_(cfg), table_(table) {}
-  const config::Config& config() const { return cfg_; }
-  const toml::node* node(const std::string& key) const { return table_.get(key); }
-  bool has(const std::string& key) const { return node(key) != nullptr; }
-  std::string text(const std::string& key, const std::string& fallback) const;
-  double number(const std::string& key, double fallback) const;
-  bool boolean(const std::string& key, bool fallback) const;
+  virtual ~ModelSection() = default;
+  virtual bool has(const std::string& key) const = 0;
+  virtual std::string text(const std::string& key, const std::string& fallback) const = 0;
+  virtual double number(const std::string& key, double fallback) const = 0;
+  virtual bool boolean(const std::string& key, bool fallback) const = 0;
+  // A list of numbers, each with the "file:line" of its element (to blame one in an error);
+  // empty when the key is absent. A value that is not a non-empty list is an error
+  // "file:line: <key> must be <what>".
+  struct Located {
+    double value = 0;
+    std::string where;
+  };
+  virtual std::vector<Located> numbers(const std::string& key, const std::string& what) const = 0;
   // "file:line" of the key (of the table where the key is absent), to prefix an error.
-  std::string where(const std::string& key) const;
+  virtual std::string where(const std::string& key) const = 0;
   // The value of `key` must be one of `allowed`; else an error listing them.
   std::string choice(const std::string& key, const std::string& fallback, const std::vector<std::string>& allowed) const;
-
- private:
-  const config::Config& cfg_;
-  const toml::table& table_;
 };
+
+// A kind is a model (of walking, or of its parts) or an analytic test problem: a function or
+// oscillator with a known answer that exists to test the methods (GSA indices, continuation,
+// the solver's event handling). `phasmid models` lists the two apart.
+enum class KindCategory { Model, TestProblem };
 
 struct ModelKind {
   std::string name;         // `[model] type = "<name>"`
   std::string description;  // one line, for `phasmid models`
   std::set<std::string> keys;  // [model] keys besides `type` and `description`
   std::function<std::unique_ptr<Scenario>(const ModelSection&)> make;
+  KindCategory category = KindCategory::Model;  // set by the registration (builtin_kinds.def)
 };
+
+// "model" | "test_problem" (`phasmid models --json`).
+std::string category_name(KindCategory c);
 
 // Every registered kind, built-in first, in registration order.
 const std::vector<ModelKind>& model_kinds();

@@ -28,13 +28,9 @@ class H5Writer;
 namespace phasmid::model {
 class OdeModel;
 }
-namespace phasmid::config {
-struct Config;
-}
 namespace phasmid::fit {
 class ResidualProblem;
 struct FitSpec;
-struct FitOverrides;
 }  // namespace phasmid::fit
 
 namespace phasmid::scenario {
@@ -90,10 +86,10 @@ class Scenario {
   // by [[triggers]]), with what sets them; `phasmid params` shows them so.
   virtual std::vector<std::pair<std::string, std::string>> run_time_parameters() const { return {}; }
 
-  // The fit of the config's [fit] section (docs/fit.md): fills `spec` and returns the residual
-  // problem, which refers to this scenario (keep it alive). Throws Error naming file:line.
-  virtual std::unique_ptr<fit::ResidualProblem> make_fit(const config::Config& cfg, const fit::FitOverrides& overrides,
-                                                         fit::FitSpec& spec) const = 0;
+  // The residual problem of a fit (docs/fit.md) whose spec the config layer read from [fit]
+  // (config::fit_spec); it refers to this scenario (keep it alive). Throws Error naming the
+  // spec's origins (file:line) where the spec does not fit the model.
+  virtual std::unique_ptr<fit::ResidualProblem> make_fit(const fit::FitSpec& spec) const = 0;
 
   // The ODE system behind the scenario, for analyses that need one (forward sensitivities,
   // Floquet multipliers, fits with exact Jacobians); nullptr for kinds that are not ODEs.

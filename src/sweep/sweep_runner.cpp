@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "common/error.hpp"
-#include "dist/executor.hpp"
+#include "parallel/executor.hpp"
 #include "io/output_lock.hpp"
 #include "solver/simulator.hpp"
 #include "sweep/progress.hpp"
@@ -25,7 +25,7 @@ extern "C" void on_stop_signal(int sig) {
     std::raise(sig);
   }
   g_stop_signal = sig;
-  dist::abandon_in_flight();  // under MPI: rank 0 reports before mpirun ends the ranks
+  parallel::abandon_in_flight();  // under MPI: rank 0 reports before mpirun ends the ranks
 }
 
 // Installs the handlers for the lifetime of a run and restores the previous ones.
@@ -71,7 +71,7 @@ std::shared_ptr<Journal> open_journal(const MasterJob& job, const std::string& p
     if (job.opt.shard.active()) fingerprint = shard_fingerprint(fingerprint, job.opt.shard);
     return std::make_shared<Journal>(path, fingerprint, job.in.spec.n_points, job.opt.resume, job.in.resume_spec);
   } catch (...) {
-    dist::release_workers();
+    parallel::release_workers();
     throw;
   }
 }
@@ -95,7 +95,7 @@ void write_result(const MasterJob& job, std::vector<std::optional<PointResult>>&
 
 // The point loop on the master: hands the missing points (of its shard) to the executor,
 // journals and stores each result as it arrives, shows progress; writes the file when done.
-SweepOutcome run_master(const MasterJob& job, dist::Executor& exec, const dist::Evaluate& evaluate, SweepOutcome out) {
+SweepOutcome run_master(const MasterJob& job, parallel::Executor& exec, const parallel::Evaluate& evaluate, SweepOutcome out) {
   const SweepOptions& opt = job.opt;
   const SweepSpec& spec = job.in.spec;
   // The output's lock before the journal is opened or truncated, held until the file is renamed
@@ -104,7 +104,7 @@ SweepOutcome run_master(const MasterJob& job, dist::Executor& exec, const dist::
   try {
     lock.emplace(opt.output);
   } catch (...) {
-    dist::release_workers();
+    parallel::release_workers();
     throw;
   }
   std::shared_ptr<Journal> journal = open_journal(job, out.journal);
@@ -112,7 +112,7 @@ SweepOutcome run_master(const MasterJob& job, dist::Executor& exec, const dist::
   for (auto& [i, r] : journal->recovered()) results[i] = r;
   out.n_recovered = journal->recovered().size();
   out.n_points = 0;
-  std::vector<dist::Task> pending;
+  std::vector<parallel::Task> pending;
   for (std::size_t i = 0; i < spec.n_points; ++i) {
     if (!opt.shard.owns(i)) continue;
     ++out.n_points;
@@ -125,10 +125,10 @@ SweepOutcome run_master(const MasterJob& job, dist::Executor& exec, const dist::
   long started = 0;
   std::size_t done = out.n_recovered;
   bar.update(done, out.n_failed, true);
-  const dist::KeepGoing keep_going = [&] {
+  const parallel::KeepGoing keep_going = [&] {
     return !g_stop_signal && !(opt.stop_after >= 0 && started++ >= opt.stop_after);
   };
-  const dist::Collect collect = [&](std::size_t i, std::string line) {
+  const parallel::Collect collect = [&](std::size_t i, std::string line) {
     PointResult r;
     std::size_t back_index = 0;
     if (!decode_record(line, back_index, r) || back_index != i) throw Error("internal: journal record does not round-trip");
@@ -208,7 +208,7 @@ SweepOutcome run_sweep(const SweepInputs& in, const SweepOptions& opt) {
   out.n_points = spec.n_points;
   out.output = opt.output;
   out.journal = Journal::path_for(opt.output);
-  std::unique_ptr<dist::Executor> exec = dist::make_executor(opt.threads);
+  std::unique_ptr<parallel::Executor> exec = parallel::make_executor(opt.threads);
   out.threads = exec->slots();
   out.executor = exec->describe();
   out.distributed = exec->distributed();
@@ -221,7 +221,7 @@ SweepOutcome run_sweep(const SweepInputs& in, const SweepOptions& opt) {
   so.solver.progress = false;
   // A point's result travels as its journal line (hex floats are exact; strings are normalised
   // to valid UTF-8), so the master stores exactly what a resumed sweep reads back.
-  const dist::Evaluate evaluate = [&](const dist::Task& t, int slot) {
+  const parallel::Evaluate evaluate = [&](const parallel::Task& t, int slot) {
     const std::size_t c = spec.combo_of(t.id);
     return encode_record(t.id, evaluate_point(*models[slot][c], combo_p[c], combo_swept[c], spec, t.id, so));
   };

@@ -1,7 +1,7 @@
 #pragma once
 // Runs a parameter sweep (docs/sweep.md): every point of the [sweep] design is simulated and
 // reduced to gait features and a gait class, in parallel with OpenMP threads or, under mpirun,
-// over MPI ranks (src/dist: rank 0 keeps the journal and writes the file). Each point is computed
+// over MPI ranks (src/parallel: rank 0 keeps the journal and writes the file). Each point is computed
 // independently from the same inputs and stored by its index, so the result does not depend
 // on the number of threads or on how often the sweep was interrupted and resumed.
 #include <cstddef>
@@ -13,7 +13,7 @@
 
 #include "scenario/scenario.hpp"
 
-#include "dist/executor.hpp"
+#include "parallel/executor.hpp"
 #include "sweep/sweep_shard.hpp"
 #include "sweep/sweep_store.hpp"
 
@@ -45,7 +45,7 @@ struct SweepOutcome {
   int signal = 0;               // the signal that stopped the sweep, if any
   int threads = 0;               // evaluation threads of this process (per worker rank under MPI)
   std::string executor;          // "2 threads", "3 ranks: 2 workers x 1 thread"
-  std::vector<dist::WorkerStats> work;  // per thread or worker rank: points computed, busy time
+  std::vector<parallel::WorkerStats> work;  // per thread or worker rank: points computed, busy time
   bool distributed = false;      // ran over MPI ranks
   bool worker = false;           // this rank was an MPI worker: nothing written, nothing to report
   double wall_seconds = 0;

@@ -7,8 +7,6 @@
 #include <optional>
 
 #include "common/error.hpp"
-#include "config/sweep_inputs.hpp"
-#include "config/toml_util.hpp"
 #include "io/h5_scalar.hpp"
 #include "sweep/sweep_runner.hpp"
 #include "sweep/sweep_store.hpp"
@@ -116,9 +114,9 @@ void refuse_missing(const std::vector<std::optional<PointResult>>& results, cons
 
 // The sweep the shards ran, from the config and --set stored in `first`; an error in them
 // (a damaged or edited shard) names the shard file as well as the config's line.
-SweepInputs shard_inputs(const ShardFile& first) {
+SweepInputs shard_inputs(const ShardFile& first, const InputsFromConfig& inputs_of) {
   try {
-    return config::sweep_inputs(config::parse_config(first.config_text, first.config_path), first.sets);
+    return inputs_of(first.config_text, first.config_path, first.sets);
   } catch (const Error& e) {
     throw Error(first.path + ": the config stored in /sweep_shard/config_text: " + e.what());
   }
@@ -158,14 +156,15 @@ void write_shard_h5(const std::string& output, const SweepInputs& in, const Shar
   w.commit();
 }
 
-MergeOutcome merge_shards(const std::vector<std::string>& parts, const std::string& output, const std::string& command) {
+MergeOutcome merge_shards(const std::vector<std::string>& parts, const std::string& output, const std::string& command,
+                          const InputsFromConfig& inputs_of) {
   if (parts.empty()) throw Error("merge: no shard files given");
   std::vector<ShardFile> shards;
   for (auto& p : parts) shards.push_back(read_shard(p));
   const std::vector<std::string> seen = check_shards(shards);
   const ShardFile& first = shards.front();
   // The design and base parameters come from the config the shards ran, as in `phasmid sweep`.
-  const SweepInputs in = shard_inputs(first);
+  const SweepInputs in = shard_inputs(first, inputs_of);
   const SweepSpec& spec = in.spec;
   if (hex64(sweep_fingerprint(in.resume_spec, spec)) != first.fingerprint)
     throw Error(first.path + ": its config no longer gives the sweep it was run with (another phasmid version?)");

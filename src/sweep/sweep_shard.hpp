@@ -9,6 +9,7 @@
 // was run with (merge rebuilds the design and the base parameters from them), and the sweep's
 // fingerprint, so shards of different configs are refused.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,8 +37,13 @@ void write_shard_h5(const std::string& output, const SweepInputs& in, const Shar
 struct MergeOutcome {
   std::size_t n_points = 0, n_failed = 0, n_shards = 0;
 };
+// The sweep the shards ran, rebuilt from the config text, its origin and the --set overrides
+// a shard keeps (the config layer's sweep_inputs over the parsed text; `phasmid merge`).
+using InputsFromConfig = std::function<SweepInputs(const std::string& config_text, const std::string& config_path,
+                                                   const std::vector<std::string>& sets)>;
 // Refuses (Error, nothing written) shards of different sweeps or shard counts, duplicate
 // shards, and an incomplete set, naming the missing points and shards.
-MergeOutcome merge_shards(const std::vector<std::string>& parts, const std::string& output, const std::string& command);
+MergeOutcome merge_shards(const std::vector<std::string>& parts, const std::string& output, const std::string& command,
+                          const InputsFromConfig& inputs_of);
 
 }  // namespace phasmid::sweep

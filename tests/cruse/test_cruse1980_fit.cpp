@@ -8,6 +8,7 @@
 
 #include "common/error.hpp"
 #include "config/config.hpp"
+#include "config/fit_section.hpp"
 #include "cruse/cruse1980_fit.hpp"
 #include "cruse/cruse1980_sweep.hpp"
 #include "fit/fit_run.hpp"
@@ -20,11 +21,19 @@ namespace {
 
 const std::string kConfig = std::string(PHASMID_SOURCE_DIR) + "/configs/fit_cruse1980_switch.toml";
 
-// The fit as `phasmid fit` builds it: the cruse1980 scenario of the config makes its problem.
+struct CruseFit {
+  fit::FitSpec spec;
+  std::unique_ptr<CruseFitProblem> problem;
+};
+
+// The fit as `phasmid fit` builds it: the config layer reads [fit], the cruse1980 scenario of
+// the config makes its problem.
 CruseFit load_fit(const fit::FitOverrides& ov = {}) {
   const config::Config cfg = config::load_config(kConfig);
   CruseFit cf;
-  auto problem = config::build_scenario(cfg)->make_fit(cfg, ov, cf.spec);
+  const auto scenario = config::build_scenario(cfg);
+  cf.spec = config::fit_spec(cfg, *scenario, ov);
+  auto problem = scenario->make_fit(cf.spec);
   cf.problem.reset(dynamic_cast<CruseFitProblem*>(problem.release()));
   if (!cf.problem) throw Error("not a cruse1980 fit problem");
   return cf;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "config/config.hpp"
+#include "config/fit_section.hpp"
 
 #include <nlopt.h>
 
@@ -121,7 +122,9 @@ TEST(OptimizerTable, GradientRowsAreRefusedForTheCruseFitWhichHasNoJacobian) {
     fit::FitSpec spec;
     std::unique_ptr<fit::ResidualProblem> problem;
   } cf;
-  cf.problem = config::build_scenario(cfg)->make_fit(cfg, {}, cf.spec);
+  const auto scenario = config::build_scenario(cfg);
+  cf.spec = config::fit_spec(cfg, *scenario, {});
+  cf.problem = scenario->make_fit(cf.spec);
   ASSERT_FALSE(cf.problem->has_jacobian());
   const std::string reason = cf.problem->no_jacobian_reason();
   ASSERT_FALSE(reason.empty());

@@ -68,11 +68,11 @@ inline std::vector<double> evaluate(const std::string& kind, const std::vector<d
 inline phasmid::gsa::GsaResult run_gsa(const phasmid::config::Config& cfg, const std::string& file, int threads = 2) {
   const auto path = (std::filesystem::temp_directory_path() / file).string();
   std::filesystem::remove(path);
-  const phasmid::config::GsaInputs in = phasmid::config::gsa_inputs(cfg, {});
+  const phasmid::gsa::GsaInputs in = phasmid::config::gsa_inputs(cfg, {});
   phasmid::sweep::SweepOptions o;
   o.output = path, o.threads = threads, o.progress = false;
   if (!phasmid::sweep::run_sweep(in.sweep, o).complete) throw phasmid::Error("test sweep did not complete");
-  phasmid::config::analyse_and_write(in, path, path, "test");
+  phasmid::gsa::analyse_and_write(in, path, path, "test");
   return phasmid::gsa::read_gsa_h5(phasmid::io::H5Reader(path));
 }
 

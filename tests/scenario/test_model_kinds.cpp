@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <set>
 
 #include "common/error.hpp"
 #include "config/config.hpp"
@@ -108,8 +109,8 @@ tolerance = 0.001
 )",
                                                   "toy_fit.toml");
   auto s = config::build_scenario(cfg);
-  fit::FitSpec spec;
-  auto problem = s->make_fit(cfg, {}, spec);
+  fit::FitSpec spec = config::fit_spec(cfg, *s, {});
+  auto problem = s->make_fit(spec);
   spec.optimizer.progress = false;
   const fit::FitResult result = fit::run_fit(*problem, spec);
   ASSERT_TRUE(result.best().converged) << result.best().termination;
@@ -123,6 +124,27 @@ TEST(ModelKinds, UnknownKindAndKeysNameTheLineAndTheNearestName) {
   const std::string msg = error_of("[model]\ntype = \"single_joint\"\njiont = \"fti\"\n");
   EXPECT_NE(msg.find("k.toml:3: unknown key 'jiont' in [model] (did you mean 'joint'?)"), std::string::npos) << msg;
   EXPECT_NE(error_of("[model]\nleg = \"middle\"\n").find("k.toml:1: [model] needs type"), std::string::npos);
+}
+
+// A list in [model] (cruse1980's stability_periods_ms) read through the ModelSection the
+// config layer implements: each bad value is blamed on its own element's line.
+TEST(ModelKinds, ListKeysNameTheLineOfTheBadElement) {
+  const std::string head = "[model]\ntype = \"cruse1980\"\n";
+  std::string msg = error_of(head + "stability_periods_ms = 500\n");
+  EXPECT_NE(msg.find("k.toml:3: stability_periods_ms must be a list of periods (ms)"), std::string::npos) << msg;
+  msg = error_of(head + "stability_periods_ms = [\n  500,\n  -5,\n]\n");
+  EXPECT_NE(msg.find("k.toml:5: stability_periods_ms: a period must be > 0 ms"), std::string::npos) << msg;
+  msg = error_of(head + "stability_periods_ms = [500, \"x\"]\n");
+  EXPECT_NE(msg.find("k.toml:3:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("stability_periods_ms"), std::string::npos) << msg;
+  EXPECT_EQ(error_of(head + "stability_periods_ms = [500, 700]\n"), "no error");
+}
+
+// The analytic test problems are registered as such; every other built-in kind is a model.
+TEST(ModelKinds, TestProblemsAreRegisteredApartFromTheModels) {
+  const std::set<std::string> tests = {"ishigami", "sobol_g", "stuart_landau", "van_der_pol", "relay_oscillator"};
+  for (const auto& k : scenario::model_kinds())
+    EXPECT_EQ(k.category == scenario::KindCategory::TestProblem, tests.count(k.name) == 1) << k.name;
 }
 
 TEST(ModelKinds, EveryBuiltInKindIsRegisteredOnce) {

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
+#include "config/simroach2_section.hpp"
 #include "simroach2/components.hpp"
 
 using namespace phasmid::simroach2;
@@ -50,7 +51,7 @@ b_Ns_per_m = 0.2
 [simroach2.joint.lf_thc2]
 joint = "LF ThC2"
 )";
-  const auto c = components_from_toml(text, "x.toml");
+  const auto c = phasmid::config::parse_simroach2_components(text, "x.toml");
   EXPECT_NEAR(tau_h_ms(c.neurons.at("hc"), -60.0), 141.4213562373095, 1e-9);
   EXPECT_DOUBLE_EQ(conductance_uS(c.synapses.at("p"), -50.0), 0.677);
   EXPECT_DOUBLE_EQ(c.muscles.at("lf_thc2_flx").activation.amplitude_N, 1.456);
@@ -61,7 +62,7 @@ joint = "LF ThC2"
 TEST(SimRoach2Config, UnknownKeyNamesFileLineAndKey) {
   const std::string text = "[simroach2.synapse.p]\ng_max_uS = 1\ne_lo_mV = -60\ne_hi_mV = -40\ngmax = 3\n";
   try {
-    components_from_toml(text, "y.toml");
+    phasmid::config::parse_simroach2_components(text, "y.toml");
     FAIL();
   } catch (const phasmid::Error& e) {
     EXPECT_NE(std::string(e.what()).find("y.toml:5"), std::string::npos) << e.what();

@@ -87,11 +87,11 @@ sweep::SweepOptions options(const std::string& out, int threads, bool resume, lo
   return o;
 }
 
-config::GsaOutcome run_gsa_text(const std::string& text, const std::vector<std::string>& sets, const std::string& out,
+gsa::GsaOutcome run_gsa_text(const std::string& text, const std::vector<std::string>& sets, const std::string& out,
                        int threads, bool resume, long stop_after = -1) {
-  const config::GsaInputs in = config::gsa_inputs(config::parse_config(text, "g.toml"), sets);
+  const gsa::GsaInputs in = config::gsa_inputs(config::parse_config(text, "g.toml"), sets);
   const bool done = resume && !fs::exists(out + ".journal") && fs::exists(out);
-  return config::run_gsa(in, options(out, threads, resume, stop_after), done);
+  return gsa::run_gsa(in, options(out, threads, resume, stop_after), done);
 }
 
 sweep::SweepOutcome sweep_run(const std::string& text, const std::string& out, int threads, bool resume,
@@ -166,7 +166,7 @@ TEST(ResumeSpec, AGsaJournalIsNotResumedUnderAChangedParameterOrSet) {
   ASSERT_TRUE(rest.analysed);
   EXPECT_EQ(rest.sweep.n_recovered, 100u);
   EXPECT_FALSE(fs::exists(out + ".journal"));
-  EXPECT_FALSE(fs::exists(config::sweep_file_for(out)));
+  EXPECT_FALSE(fs::exists(gsa::sweep_file_for(out)));
 }
 
 TEST(ResumeSpec, ASweepRefusesAChangedSimulationKeyForAJournalAndAFinishedFile) {
@@ -186,9 +186,9 @@ TEST(ResumeSpec, AGsaStoppedAfterItsSweepLeavesNoFileWithoutGsa) {
   TempDir dir("no_partial");
   const std::string out = dir / "g.h5";
   // The whole sweep, then the analysis fails (an unreadable sweep file): OUT must not appear.
-  const config::GsaInputs in = config::gsa_inputs(config::parse_config(kGsa, "g.toml"), {});
+  const gsa::GsaInputs in = config::gsa_inputs(config::parse_config(kGsa, "g.toml"), {});
   sweep::SweepOptions o = options(out, 1, false);
-  o.sweep_file = config::sweep_file_for(out), o.keep_journal = true;
+  o.sweep_file = gsa::sweep_file_for(out), o.keep_journal = true;
   auto s = sweep::run_sweep(in.sweep, o);
   ASSERT_TRUE(s.complete);
   s.kept_journal.reset();  // as if killed here: the journal stays, complete
@@ -198,7 +198,7 @@ TEST(ResumeSpec, AGsaStoppedAfterItsSweepLeavesNoFileWithoutGsa) {
   ASSERT_TRUE(rest.analysed);
   EXPECT_EQ(rest.sweep.n_computed, 0u);
   EXPECT_TRUE(io::H5Reader(out).exists("/gsa/y"));
-  EXPECT_FALSE(fs::exists(config::sweep_file_for(out)));
+  EXPECT_FALSE(fs::exists(gsa::sweep_file_for(out)));
 
   // A file with /sweep and no /gsa (an older phasmid killed in its analysis): --resume analyses it.
   const std::string old = dir / "old.h5";

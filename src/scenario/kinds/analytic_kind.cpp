@@ -41,8 +41,7 @@ class AnalyticScenario : public Scenario {
                   std::to_string(f_.parameters.size()) + " parameters");
     return std::make_unique<AnalyticRun>(f_.parameters, p, f_.y(p));
   }
-  std::unique_ptr<fit::ResidualProblem> make_fit(const config::Config&, const fit::FitOverrides&,
-                                                 fit::FitSpec&) const override {
+  std::unique_ptr<fit::ResidualProblem> make_fit(const fit::FitSpec&) const override {
     throw Error("model kind " + f_.kind + " is an analytic test function without data to fit ([fit] does not apply)");
   }
 

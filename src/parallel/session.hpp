@@ -6,7 +6,7 @@
 // -DPHASMID_WITH_MPI=OFF, there is one rank and nothing of MPI is touched.
 #include <string>
 
-namespace phasmid::dist {
+namespace phasmid::parallel {
 
 bool mpi_compiled();            // built with PHASMID_WITH_MPI
 std::string mpi_description();  // "MPI (Open MPI v4.1.4, ...)" or "no MPI", for --version
@@ -55,4 +55,4 @@ struct Session {
   Session& operator=(const Session&) = delete;
 };
 
-}  // namespace phasmid::dist
+}  // namespace phasmid::parallel

@@ -4,7 +4,7 @@
 # a journal written under MPI resumes without it.
 set -u
 PHASMID="$1"; SRC="$2"
-source "$SRC/tests/dist/mpi_env.sh"   # skips without MPI; runs in a fresh temporary directory
+source "$SRC/tests/parallel/mpi_env.sh"   # skips without MPI; runs in a fresh temporary directory
 same() {
   if h5diff -q "$2" "$3" /sweep /sweep && h5diff -q "$2" "$3" /gsa /gsa; then ok; else bad "$1: $2 and $3 differ"; fi
 }

@@ -1,4 +1,4 @@
-#include "dist/executor.hpp"
+#include "parallel/executor.hpp"
 
 #include <omp.h>
 
@@ -10,9 +10,9 @@
 #include <mutex>
 
 #include "common/error.hpp"
-#include "dist/session.hpp"
+#include "parallel/session.hpp"
 
-namespace phasmid::dist {
+namespace phasmid::parallel {
 namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -107,4 +107,4 @@ std::string format_work_summary(const std::vector<WorkerStats>& stats, const std
   return out;
 }
 
-}  // namespace phasmid::dist
+}  // namespace phasmid::parallel

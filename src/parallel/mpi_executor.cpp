@@ -7,7 +7,7 @@
 // Waiting ranks poll (MPI_Iprobe) with a growing sleep instead of blocking in MPI_Recv, which
 // in Open MPI spins: a master or a worker's communication thread then costs no core that an
 // evaluation could use, even with more ranks than cores.
-#include "dist/executor.hpp"
+#include "parallel/executor.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -18,22 +18,22 @@
 #include <thread>
 
 #include "common/error.hpp"
-#include "dist/bytes.hpp"
-#include "dist/session.hpp"
+#include "parallel/bytes.hpp"
+#include "parallel/session.hpp"
 
 #include <csignal>
 
-namespace phasmid::dist {
+namespace phasmid::parallel {
 namespace {
 volatile std::sig_atomic_t g_abandon = 0;
 }
 void abandon_in_flight() { g_abandon = 1; }
-}  // namespace phasmid::dist
+}  // namespace phasmid::parallel
 
 #ifdef PHASMID_WITH_MPI
 #include <mpi.h>
 
-namespace phasmid::dist {
+namespace phasmid::parallel {
 namespace {
 bool g_released = false;
 enum Tag : int { kReady = 1, kTask = 2, kResult = 3, kStop = 4 };
@@ -235,14 +235,14 @@ void release_workers() {
 
 bool workers_released() { return g_released; }
 
-}  // namespace phasmid::dist
+}  // namespace phasmid::parallel
 
 #else
 
-namespace phasmid::dist {
+namespace phasmid::parallel {
 std::unique_ptr<Executor> make_mpi_executor(int) { throw Error("internal: MPI executor requested but MPI is not compiled in"); }
 void release_workers() {}
 bool workers_released() { return false; }
-}  // namespace phasmid::dist
+}  // namespace phasmid::parallel
 
 #endif

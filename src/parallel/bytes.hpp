@@ -9,7 +9,7 @@
 
 #include "common/error.hpp"
 
-namespace phasmid::dist {
+namespace phasmid::parallel {
 
 class ByteWriter {
  public:
@@ -83,4 +83,4 @@ class ByteReader {
   std::size_t pos_ = 0;
 };
 
-}  // namespace phasmid::dist
+}  // namespace phasmid::parallel

@@ -1,4 +1,4 @@
-// The executor contract without MPI (the MPI side: tests/dist/mpi_*.test.sh): every task is
+// The executor contract without MPI (the MPI side: tests/parallel/mpi_*.test.sh): every task is
 // evaluated once and collected once with its own result; keep_going stops the hand-out;
 // an exception from collect reaches the caller; bytes and fit summaries cross bit for bit.
 #include <gtest/gtest.h>
@@ -9,15 +9,15 @@
 #include <map>
 
 #include "common/error.hpp"
-#include "dist/bytes.hpp"
-#include "dist/executor.hpp"
+#include "parallel/bytes.hpp"
+#include "parallel/executor.hpp"
 #include "fit/multistart.hpp"
 
 using namespace phasmid;
 
 namespace {
-std::vector<dist::Task> tasks(std::size_t n) {
-  std::vector<dist::Task> t;
+std::vector<parallel::Task> tasks(std::size_t n) {
+  std::vector<parallel::Task> t;
   for (std::size_t i = 0; i < n; ++i) t.push_back({i, "in" + std::to_string(i)});
   return t;
 }
@@ -25,11 +25,11 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 }  // namespace
 
 TEST(Executor, EveryTaskOnceWithItsOwnResult) {
-  auto exec = dist::make_openmp_executor(3);
+  auto exec = parallel::make_openmp_executor(3);
   ASSERT_EQ(exec->slots(), 3);
   std::map<std::size_t, std::string> got;
   auto stats = exec->run(
-      tasks(200), [](const dist::Task& t, int slot) { return t.input + "@" + std::to_string(t.id * t.id) + (slot < 3 ? "" : "!"); },
+      tasks(200), [](const parallel::Task& t, int slot) { return t.input + "@" + std::to_string(t.id * t.id) + (slot < 3 ? "" : "!"); },
       [&](std::size_t id, std::string r) { EXPECT_TRUE(got.emplace(id, r).second) << "task " << id << " collected twice"; },
       [] { return true; });
   ASSERT_EQ(got.size(), 200u);
@@ -43,17 +43,17 @@ TEST(Executor, EveryTaskOnceWithItsOwnResult) {
 }
 
 TEST(Executor, KeepGoingStopsTheHandOut) {
-  auto exec = dist::make_openmp_executor(2);
+  auto exec = parallel::make_openmp_executor(2);
   long asked = 0;
   std::size_t collected = 0;
-  exec->run(tasks(50), [](const dist::Task& t, int) { return std::to_string(t.id); },
+  exec->run(tasks(50), [](const parallel::Task& t, int) { return std::to_string(t.id); },
             [&](std::size_t, std::string) { ++collected; }, [&] { return asked++ < 7; });
   EXPECT_EQ(collected, 7u);
 }
 
 TEST(Executor, CollectErrorReachesTheCaller) {
-  auto exec = dist::make_openmp_executor(2);
-  EXPECT_THROW(exec->run(tasks(20), [](const dist::Task& t, int) { return std::to_string(t.id); },
+  auto exec = parallel::make_openmp_executor(2);
+  EXPECT_THROW(exec->run(tasks(20), [](const parallel::Task& t, int) { return std::to_string(t.id); },
                          [](std::size_t id, std::string) {
                            if (id == 5) throw Error("journal full");
                          },
@@ -65,8 +65,8 @@ TEST(Bytes, RoundTripBitForBitAndRefuseTruncation) {
   const double odd[] = {-0.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::denorm_min(),
                         -std::numeric_limits<double>::infinity(), 0.1 + 0.2};
   std::vector<double> v(std::begin(odd), std::end(odd));
-  std::string bytes = dist::ByteWriter().u64(42).f64s(v).str(std::string("a\0b", 3)).strs({"x", ""}).take();
-  dist::ByteReader r(bytes);
+  std::string bytes = parallel::ByteWriter().u64(42).f64s(v).str(std::string("a\0b", 3)).strs({"x", ""}).take();
+  parallel::ByteReader r(bytes);
   EXPECT_EQ(r.u64(), 42u);
   auto back = r.f64s();
   ASSERT_EQ(back.size(), v.size());
@@ -74,7 +74,7 @@ TEST(Bytes, RoundTripBitForBitAndRefuseTruncation) {
   EXPECT_EQ(r.str(), std::string("a\0b", 3));
   EXPECT_EQ(r.strs(), (std::vector<std::string>{"x", ""}));
   std::string cut = bytes.substr(0, bytes.size() - 3);
-  dist::ByteReader t(cut);
+  parallel::ByteReader t(cut);
   t.u64();
   t.f64s();
   t.str();

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-namespace phasmid::dist {
+namespace phasmid::parallel {
 
 struct Task {
   std::size_t id = 0;
@@ -80,4 +80,4 @@ void abandon_in_flight();
 std::unique_ptr<Executor> make_openmp_executor(int threads);
 std::unique_ptr<Executor> make_mpi_executor(int threads);
 
-}  // namespace phasmid::dist
+}  // namespace phasmid::parallel

@@ -6,7 +6,7 @@
 # compared with its timing removed.
 set -u
 PHASMID="$1"; SRC="$2"
-source "$SRC/tests/dist/mpi_env.sh"   # skips without MPI; runs in a fresh temporary directory
+source "$SRC/tests/parallel/mpi_env.sh"   # skips without MPI; runs in a fresh temporary directory
 cfg="$SRC/configs/fit_fti_section31.toml"
 args=(--multistart 6 --profile middle.fti.k_F.flexion --profile middle.fti.k_E.extension -q)
 "$PHASMID" fit "$cfg" "${args[@]}" -o single.h5 || bad "single-process fit"

@@ -6,7 +6,7 @@
 # without MPI support refuse several ranks.
 set -u
 PHASMID="$1"; SRC="$2"
-source "$SRC/tests/dist/mpi_env.sh"   # skips without MPI; runs in a fresh temporary directory
+source "$SRC/tests/parallel/mpi_env.sh"   # skips without MPI; runs in a fresh temporary directory
 same() {  # description, file a, file b: every dataset and group attribute under /sweep and /parameters
   if h5diff -q "$2" "$3" /sweep /sweep && h5diff -q "$2" "$3" /parameters /parameters; then ok; else bad "$1: $2 and $3 differ"; fi
 }

@@ -1,4 +1,4 @@
-#include "dist/session.hpp"
+#include "parallel/session.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -11,7 +11,7 @@
 #include <mpi.h>
 #endif
 
-namespace phasmid::dist {
+namespace phasmid::parallel {
 namespace {
 bool g_initialised = false;
 int g_rank = 0, g_size = 1;
@@ -135,4 +135,4 @@ Agreement agree(const std::string& error, int code) {
 int rank() { return g_rank; }
 int size() { return g_size; }
 
-}  // namespace phasmid::dist
+}  // namespace phasmid::parallel

@@ -7,7 +7,7 @@
 # Usage: mpi_errors.test.sh PHASMID SOURCE_DIR
 set -u
 PHASMID=$(readlink -f "$1"); SRC=$(readlink -f "$2")
-source "$SRC/tests/dist/mpi_env.sh"   # skips without MPI; runs in a fresh temporary directory
+source "$SRC/tests/parallel/mpi_env.sh"   # skips without MPI; runs in a fresh temporary directory
 
 # What mpirun (Open MPI 4.1) prints when a rank exits non-zero; everything else on stderr is phasmid's.
 openmpi_lines='^-+$|^Primary job +terminated normally, but [0-9]+ process(es)? returned$|^a non-zero exit code\. Per user-direction, the job has been aborted\.$|^mpirun detected that one or more processes exited with non-zero status, thus causing$|^the job to be terminated\. The first process to do so was:$|^$|^ +Process name: \[\[[0-9]+,[0-9]+\],[0-9]+\]$|^ +Exit code: +[0-9]+$'
