@@ -3,6 +3,7 @@
 // scenario factory, the [fit] problem and, for ODE kinds, [sensitivity]. Nothing is run.
 // Each step is tried on its own, so a config broken for one verb still reaches the others.
 #include "config/config.hpp"
+#include "config/fit_section.hpp"
 #include "config/sensitivity_section.hpp"
 #include "config/sweep_inputs.hpp"
 #include "fit/fit_spec.hpp"
@@ -29,8 +30,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   });
   fuzz::attempt([&] { config::sweep_inputs(cfg, {}); });
   fuzz::attempt([&] {
-    fit::FitSpec spec;
-    sc->make_fit(cfg, fit::FitOverrides{}, spec);
+    sc->make_fit(config::fit_spec(cfg, *sc, fit::FitOverrides{}));
   });
   return 0;
 }
