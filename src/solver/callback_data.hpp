@@ -10,6 +10,7 @@
 
 #include "model/ode_model.hpp"
 #include "solver/cvodes_session.hpp"
+#include "solver/run_parameters.hpp"
 #include "solver/solver_options.hpp"
 #include "solver/solver_result.hpp"
 
@@ -35,7 +36,7 @@ struct JetScratch {
 // Everything the C callbacks need; lives for one run().
 struct CallbackData {
   const model::OdeModel* model;
-  const std::vector<double>* p;
+  const std::vector<double>* p;             // the run's parameters (RunParameters::values)
   std::unique_ptr<model::OdeModelPart> eq;  // the model bound to *p (make_whole), or none
   const std::vector<RootSpec>* roots;
   std::vector<size_t> sens_params;
@@ -43,16 +44,14 @@ struct CallbackData {
   JetScratch<JetK> jK;  // Jacobian columns, sensitivity chunks of five to eight
   JetScratch<Jet4> j4;  // sensitivity chunks of two to four
   JetScratch<Jet1> j1;  // one sensitivity
-  void init_scratch(const std::vector<double>& values) {
-    jK.init(n, values);
-    j4.init(n, values);
-    j1.init(n, values);
-  }
-  // A parameter set during the run (a triggered command time).
-  void set_parameter(size_t q, double value) {
-    jK.p[q] = JetK(value);
-    j4.p[q] = Jet4(value);
-    j1.p[q] = Jet1(value);
+  // The scratch vectors; their parameters mirror the run's (kept in step by `params`).
+  void init_scratch(RunParameters& params) {
+    jK.init(n, params.values());
+    j4.init(n, params.values());
+    j1.init(n, params.values());
+    params.mirror(jK.p);
+    params.mirror(j4.p);
+    params.mirror(j1.p);
   }
   long sens_evals = 0;
   // Sparse (KLU) Jacobians: column-compressed pattern and a column colouring (columns of one

@@ -121,7 +121,7 @@ SolverOptions options_of_part(const SolverOptions& options, bool stiff) {
 
 }  // namespace
 
-void build_parts(Run& run, const model::OdeModel& model, const model::ModelPartition& P,
+void build_parts(Run& run, RunParameters& params, const model::OdeModel& model, const model::ModelPartition& P,
                  const std::vector<RootSpec>& roots, const SolverOptions& options) {
   const size_t n = model.num_states();
   std::vector<size_t> part_of(n), local_of(n);
@@ -140,7 +140,7 @@ void build_parts(Run& run, const model::OdeModel& model, const model::ModelParti
     ps->stiff = P.is_stiff(k);
     ps->eq = model.make_part(P, k);
     if (!ps->eq) throw Error("internal: model " + model.kind() + " has no equations for part " + ps->name);
-    ps->eq->bind(run.p->data());
+    params.bind(ps->eq.get());
     compile_if_asked(ps->eq.get(), options);
     ps->yfull.assign(n, 0.0);
     ps->ffull.assign(n, 0.0);

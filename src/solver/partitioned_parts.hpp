@@ -19,6 +19,7 @@
 #include "model/ode_model.hpp"
 #include "solver/cvodes_session.hpp"
 #include "solver/integrator_session.hpp"
+#include "solver/run_parameters.hpp"
 #include "solver/solver_options.hpp"
 #include "solver/solver_result.hpp"
 #include "solver/step_history.hpp"
@@ -171,14 +172,15 @@ struct PartSolver {
 
 struct Run {
   std::vector<std::unique_ptr<PartSolver>> parts;
-  const std::vector<double>* p = nullptr;
-  std::vector<JetK> pK;
+  const std::vector<double>* p = nullptr;  // the run's parameters (RunParameters::values)
+  std::vector<JetK> pK;                    // as Jets, a mirror kept in step by RunParameters
   const std::vector<RootSpec>* roots = nullptr;
   bool windowed = false;  // parts read each other's snapshots (SolverOptions::threads >= 2)
 };
 
-// The parts of P with their equations, who reads whose exports, and which roots each watches.
-void build_parts(Run& run, const model::OdeModel& model, const model::ModelPartition& P,
+// The parts of P with their equations (bound to `params`), who reads whose exports, and which
+// roots each watches.
+void build_parts(Run& run, RunParameters& params, const model::OdeModel& model, const model::ModelPartition& P,
                  const std::vector<RootSpec>& roots, const SolverOptions& options);
 // Each part's integrator from y0, integrating towards the first stop; contexts: one for all
 // parts, or one per part (windowed runs: no two threads share one).

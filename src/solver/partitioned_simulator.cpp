@@ -186,8 +186,6 @@ void Partitioned::feed_triggers(CommandSchedule& s) {
     const size_t k = e.root - n_caller_roots_;
     if (!s.fire(k, e.t, e.direction, e.y.data(), res_.commands)) continue;
     const double tau = e.t + s.triggers()[k].delay_ms;
-    for (size_t q : s.triggers()[k].targets) run_.pK[q] = JetK(tau);
-    for (auto& x : run_.parts) x->eq->bind(s.p().data());
     if (tau < s.t_end()) add_command_time(s, tau, k);
   }
 }
@@ -270,8 +268,8 @@ SolveResult run_partitioned(const model::OdeModel& model, const model::ModelPart
   run.windowed = windowed;
   run.p = &schedule.p();
   run.roots = &roots;
-  for (double v : schedule.p()) run.pK.emplace_back(v);
-  partitioned::build_parts(run, model, P, roots, options);
+  schedule.parameters().mirror(run.pK);
+  partitioned::build_parts(run, schedule.parameters(), model, P, roots, options);
   partitioned::start_sessions(run, model, contexts, options, y0, schedule.next_stop());
 
   SolveResult res;

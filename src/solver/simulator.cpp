@@ -155,8 +155,6 @@ void WholeSystem::fire_triggers(CommandSchedule& schedule, std::vector<double>& 
     if (!dir || !schedule.fire(k, t_, dir, y, res_.commands)) continue;
     const model::CommandTrigger& tr = schedule.triggers()[k];
     const double when = t_ + tr.delay_ms;
-    for (size_t q : tr.targets) d_.set_parameter(q, when);
-    if (d_.eq) d_.eq->bind(schedule.p().data());
     std::vector<double> dte;
     if (ns_) {
       std::vector<double> s_state(ns_);
@@ -269,12 +267,12 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const OutputTimes
   d.model = &model_;
   d.p = &schedule.p();
   d.eq = model_.make_whole();
-  if (d.eq) d.eq->bind(d.p->data());
+  if (d.eq) schedule.parameters().bind(d.eq.get());
   if (ns == 0) compile_if_asked(d.eq.get(), options_);
   d.roots = &all_roots;
   d.sens_params = sens_params;
   d.n = model_.num_states();
-  d.init_scratch(schedule.p());
+  d.init_scratch(schedule.parameters());
 
   SundialsContext ctx;
   const std::vector<double> y0 = model_.initial_state(schedule.p());
