@@ -1,19 +1,17 @@
 #!/usr/bin/env bash
 # phasmid vs Brian2 on the isolated FTi joint network (configs/single_joint_fti.toml, 26
 # states) or the middle leg (configs/middle_leg_forward.toml, 78 states), 9 s of model time:
-# run time and feature accuracy, one table (bench/results, "phasmid vs Brian2").
+# run time and feature accuracy, one table (docs/performance.md "phasmid vs Brian2").
 #
 #   bash bench/bench_brian2.sh [REPEATS [MODEL]]   (default 3, single_joint_fti; or middle_leg_forward)
 #   PHASMID=path overrides build/phasmid; PHASMID_TOLS, RK4_DTS, GSL_METHODS, GSL_ERRORS, GSL_DT
 #   the ladders (GSL_METHODS: Brian2's adaptive GSL pairs, default "rkf45 rkck");
-#   PHASMID_METHODS the phasmid integrators ([simulation] integrator; default "cvodes_bdf erk_dp5").
-#   NEURONS_TOLS: rows with partitioned = "neurons" (Dormand-Prince, NEURONS_METHODS: "erk_dp5"
-#   ARKODE's and/or "dopri5" phasmid's, default both, on the motoneurons, muscles
-#   and mechanics at each of these tolerances, CVODES BDF on the CPG and interneurons at
+#   PHASMID_METHODS the phasmid integrators ([simulation] integrator; default "cvodes_bdf dopri5").
+#   NEURONS_TOLS: rows with partitioned = "neurons" (Dormand-Prince, NEURONS_METHODS: "dopri5",
+#   on the motoneurons, muscles and mechanics at each of these tolerances, CVODES BDF on the CPG and interneurons at
 #   stiff_part_tol = NEURONS_STIFF_TOL; docs/solver.md "Integrators"); default "1e-4 1e-5", 1e-7.
 #   NEURONS_STIFF_ATOL (default "mV = 1e-4"; empty: none): each compiled NEURONS_TOLS row once
-#   more with stiff_part_atol_by_unit = { NEURONS_STIFF_ATOL } (bench/results "The network
-#   part's absolute tolerance").
+#   more with stiff_part_atol_by_unit = { NEURONS_STIFF_ATOL }.
 #   COMPILED_RHS=1 (default): the shipped row and the NEURONS_TOLS rows once more with
 #   compiled_rhs = true (model/compiled_rhs.hpp); their first run, with an empty cache, compiles,
 #   and its extra CPU time is the row's "compile s" (children's CPU counts), as Brian2's is.
@@ -51,11 +49,11 @@ SHIPPED_TOL=$(sed -n 's/^rtol *= *//p' "$CONFIG")
 SHIPPED_TOL=${SHIPPED_TOL:-1e-8}  # the solver's default when the config sets none
 SHIPPED_METHOD=$(sed -n 's/^integrator *= *"\(.*\)"/\1/p' "$CONFIG")
 SHIPPED_METHOD=${SHIPPED_METHOD:-cvodes_bdf}
-PHASMID_METHODS=${PHASMID_METHODS:-"cvodes_bdf erk_dp5"}
+PHASMID_METHODS=${PHASMID_METHODS:-"cvodes_bdf dopri5"}
 PHASMID_TOLS=${PHASMID_TOLS:-"1e-4 1e-5 1e-6 1e-7 1e-8 1e-9 1e-10"}
 NEURONS_TOLS=${NEURONS_TOLS-"1e-4 1e-5"}
 NEURONS_STIFF_TOL=${NEURONS_STIFF_TOL:-1e-7}
-NEURONS_METHODS=${NEURONS_METHODS:-"erk_dp5 dopri5"}
+NEURONS_METHODS=${NEURONS_METHODS:-"dopri5"}
 NEURONS_STIFF_ATOL=${NEURONS_STIFF_ATOL-mV = 1e-4}
 COMPILED_RHS=${COMPILED_RHS:-1}
 RK4_DTS=${RK4_DTS:-"0.05 0.025 0.01 0.005"}

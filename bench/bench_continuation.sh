@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Cost per point of `phasmid continue` against `phasmid sweep` at the same parameter values
-# (bench/results, "Continuation"): the continuation pays one transient, then Newton
+# (docs/performance.md "Continuation"): the continuation pays one transient, then Newton
 # shooting with the monodromy per point; every sweep point pays its own transient
 # (transient_ms of the continuation) plus the cycles its features average over.
 # Usage: bench/bench_continuation.sh [PHASMID] [CONFIG] [START END]

@@ -1,5 +1,5 @@
 // What the MPI master/worker layer costs and how it would scale (bench/bench_mpi.sh runs it;
-// results in bench/results, "MPI").
+// docs/performance.md "Threads, sweeps and MPI").
 //   mpirun -np 3 bench_mpi master [TASKS [SLOTS]]  tasks/s through the master with a trivial
 //                                           evaluator, SLOTS (8) tasks in flight per worker
 //   bench_mpi costs CONFIG MASTER_US        runs CONFIG's sweep on one thread (per-point costs),

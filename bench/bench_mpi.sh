@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# MPI benchmark (bench/results, "MPI"): wall time of the 16-point three-leg sweep
+# MPI benchmark (docs/performance.md "Threads, sweeps and MPI"): wall time of the 16-point three-leg sweep
 # bench/sweep_three_legs_16.toml (rate motoneurons) with one process, with
 # `mpirun -np 3` (a master and two workers of one thread) and with 2 OpenMP threads, as ratios
 # to one process; the master's cost per task with a trivial evaluator; and the projected

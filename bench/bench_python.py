@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Cost of calling phasmid from Python (bench/results, "Python module"):
+"""Cost of calling phasmid from Python (docs/performance.md "Python"):
 
 1. One single-joint simulation (configs/single_joint_fti.toml, 9000 ms): load + simulate +
    save from Python against `phasmid simulate` minus the process start (`phasmid --version`).

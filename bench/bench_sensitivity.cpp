@@ -105,12 +105,6 @@ std::vector<Variant> variants() {
     change(x);
     v.push_back({label, x});
   };
-  add("old", [](auto& x) {  // the defaults before this benchmark's measurements (bench/results)
-    x.sensitivity_rhs = solver::SensitivityRhs::PerParameter;
-    x.linear_solver = solver::LinearSolverKind::Dense;
-    x.sensitivities_at_outputs = true;
-  });
-  add("per-par", [](auto& x) { x.sensitivity_rhs = solver::SensitivityRhs::PerParameter; });
   add("stagg.", [](auto& x) { x.sensitivity_method = solver::SensitivityMethod::Staggered; });
   add("tolS x10", [](auto& x) { x.sensitivity_tolerance_factor = 10.0; });
   add("tolS x100", [](auto& x) { x.sensitivity_tolerance_factor = 100.0; });
@@ -124,8 +118,6 @@ std::vector<Variant> variants() {
   add("klu", [](auto& x) { x.linear_solver = solver::LinearSolverKind::Klu; });
   add("dense", [](auto& x) { x.linear_solver = solver::LinearSolverKind::Dense; });
   add("+traj", [](auto& x) { x.sensitivities_at_outputs = true; });
-  add("mn-free", [](auto&) {});  // per-state atolS set in bench()/accuracy(): see with_mn_free()
-  add("sun-nvec", [](auto& x) { x.vector_kernels = solver::VectorKernels::Sundials; });
   if (!g_only.empty()) {  // keep the default (the reference for 'steps x') and the chosen ones
     std::vector<Variant> kept{v[0]};
     for (size_t k = 1; k < v.size(); ++k)
@@ -133,23 +125,6 @@ std::vector<Variant> variants() {
     v = kept;
   }
   return v;
-}
-
-// `mn-free`: the sensitivities of the motoneurons' spike variables (V, m_Na, h_Na, m_K) out
-// of the error test (atolS x 1e6), every other state's in it. The muscle activation and m_q,
-// which carry the MN's effect on the rest of the model, stay controlled.
-void with_mn_free(std::vector<Variant>& vs, const model::OdeModel& m) {
-  for (auto& v : vs) {
-    if (std::string(v.label) != "mn-free") continue;
-    std::vector<double> scale(m.num_states(), 1.0);
-    for (size_t i = 0; i < m.num_states(); ++i) {
-      const std::string& name = m.states()[i].name;
-      const bool mn = name.find(".mn_") != std::string::npos;
-      for (const char* g : {".V", ".m_Na", ".h_Na", ".m_K"})
-        if (mn && name.size() > std::strlen(g) && name.compare(name.size() - std::strlen(g), std::strlen(g), g) == 0) scale[i] = 1e6;
-    }
-    v.options.sensitivity_atol_scale = scale;
-  }
 }
 
 // Parameters for Np sensitivities: the first Np, or `names` (a model's meaningful ones) first.
@@ -169,15 +144,14 @@ void bench(const char* label, const model::OdeModel& m, double t_end, int repeat
   const auto grid = solver::output_grid(t_end, 1.0);
   const auto roots = features::feature_roots(m);
   auto vs = variants();
-  with_mn_free(vs, m);
   solver::Simulator plain_sim(m, vs[0].options);
   solver::SolveResult r0;
   auto plain_run = [&] { r0 = plain_sim.run(p, grid, roots); };
   const int reps = std::max(repeats, 3);
   const double plain = seconds(plain_run, reps);
-  // Every ratio is the best of `reps` alternations of (plain run, measured run): on this VM
-  // the speed of the same binary drifts by up to 1.8x within seconds, so a baseline measured
-  // once at the start skews whole columns; adjacent pairs see the same machine state.
+  // Every ratio is the best of `reps` alternations of (plain run, measured run): on a shared
+  // machine the speed of the same binary drifts within seconds, so a baseline measured once at
+  // the start skews whole columns; adjacent pairs see the same machine state.
   auto ratio = [&](const std::function<void()>& run) {
     double best_plain = 1e300, best = 1e300;
     for (int r = 0; r < reps; ++r) {
@@ -234,7 +208,6 @@ void accuracy(const char* label, const model::OdeModel& m, double t_end, double 
               names.size(), t_end, discard, "features with |relative| > 0.01");
   std::printf("%10s  %9s  %9s  %s\n", "variant", "max dev", "CPU s", "worst feature / parameter");
   auto vs = variants();
-  with_mn_free(vs, m);
   for (auto& v : vs) {
     o.solver = v.options;
     sensitivity::SensitivityReport r;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The three legs' partitioned run on 1 and 2 threads ([simulation] threads; issue #21): 9 s of
+# The three legs' partitioned run on 1 and 2 threads ([simulation] threads): 9 s of
 # walking at the kinds' defaults (spiking: Dormand-Prince per joint at 1e-6, phasmid's dopri5 or
 # SPIKING_INTEGRATOR; rate: CVODES BDF per joint at 1e-7), wall and CPU seconds (best of
 # BENCH_REPEATS, default 3) and the ratios against the sequential run (threads = 1) of the
@@ -12,7 +12,7 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BENCH=${BENCH:-$ROOT/build/bench/bench_walking}
 WINDOW=${1:-1}
 export BENCH_REPEATS=${BENCH_REPEATS:-3}
-SPIKING_INTEGRATOR=${SPIKING_INTEGRATOR:-dopri5}  # the kind's default; erk_dp5: ARKODE's Dormand-Prince
+SPIKING_INTEGRATOR=${SPIKING_INTEGRATOR:-dopri5}  # the kind's default
 [ -x "$BENCH" ] || { echo "bench_threads: $BENCH not found (cmake --build build --target bench_walking)" >&2; exit 1; }
 printf "# bench_threads: 9000 ms of the three legs, best of %s, window %s ms, %s\n" "$BENCH_REPEATS" "$WINDOW" "$(date -u +%FT%TZ)"
 printf "%-8s %-30s %7s %8s %8s %8s %9s %9s  %s\n" mn variant threads wall_s cpu_s steps wall/seq cpu/seq load
@@ -28,7 +28,7 @@ for mn in spiking rate; do
       load=$(cut -d' ' -f1-3 /proc/loadavg)
       atol=""; [ "$u" != default ] && atol=$u
       row=$(BENCH_THREADS=$th BENCH_WINDOW_MS=$w BENCH_ATOL_UNITS=$atol BENCH_INTEGRATOR=$integ \
-            "$BENCH" 9000 three auto $mn $tol phasmid parts 2>/dev/null | tail -1)
+            "$BENCH" 9000 three auto $mn $tol parts 2>/dev/null | tail -1)
       wall=$(awk '{print $(NF-9)}' <<< "$row"); cpu=$(awk '{print $(NF-8)}' <<< "$row"); steps=$(awk '{print $(NF-7)}' <<< "$row")
       [ -z "$seq_wall" ] && seq_wall=$wall seq_cpu=$cpu
       printf "%-8s %-30s %7s %8s %8s %8s %9.2f %9.2f  %s\n" $mn "$v" $th "$wall" "$cpu" "$steps" \

@@ -2,25 +2,20 @@
 // Section 2.6: 2 s for one joint, 15 s for one leg, 180 s for three legs, each for 9 s of
 // walking). Usage:
 //   bench_walking [T_END_MS=9000] [models=joint,leg,three] [dense|band|klu|auto]
-//                 [motoneurons=spiking,rate] [RTOL=1e-6] [kernels=phasmid[,sundials]]
-//                 [integration=parts[,neurons][,whole]]
+//                 [motoneurons=spiking,rate] [RTOL=1e-6] [integration=parts[,neurons][,whole]]
 // Prints one line per model and motoneuron formulation (Hodgkin-Huxley "spiking" MNs or the
 // "rate" formulation, docs/model.md): states, simulated ms, wall s, steps, RHS and Jacobian
 // evaluations, the ratio to the 2013 time scaled to the simulated duration, and gait features
 // to compare formulations and tolerances (after T_END/2, at most 2500 ms, is discarded): the
 // period (the FTi joint's; the middle leg's step period for leg and three legs), for the
-// three legs the lags hind->middle and middle->front (in periods). `kernels=phasmid,sundials`
-// adds a row per model with Debian's own (unoptimised) SUNDIALS vector/matrix kernels, the
-// baseline of solver/serial_kernels.hpp. `integration=parts,whole` adds a row per model
+// three legs the lags hind->middle and middle->front (in periods). `integration=parts,whole` adds a row per model
 // integrated as one system ("[whole]", Partitioning::Off; "parts" forces On), the baseline of
 // the partitioned integration (solver/partitioned_simulator.hpp; the single joint is one part
 // either way; "neurons": Partitioning::Neurons, the spiking cells apart from their networks,
 // "[neurons]"). Times are the best of BENCH_REPEATS (default 3) runs.
-// Environment: BENCH_MAXORD=q limits the BDF order,
-// BENCH_STALD=1 switches on CVODES' stability limit detection (both measured, not adopted),
-// BENCH_INTEGRATOR=name selects the integrator ([simulation] integrator names: erk_dp5, ...),
-// BENCH_THREADS, BENCH_WINDOW_MS, BENCH_WINDOW_ORDER, BENCH_LOOK_AHEAD the partitioned run's
-// threads and window (SolverOptions::threads, window_ms, window_order, window_look_ahead),
+// Environment: BENCH_INTEGRATOR=name selects the integrator ([simulation] integrator names:
+// cvodes_bdf, dopri5), BENCH_THREADS, BENCH_WINDOW_MS the partitioned run's threads and window
+// (SolverOptions::threads, window_ms),
 // BENCH_STIFF_TOL the neurons partition's network parts' tolerance (SolverOptions::stiff_part_tol),
 // BENCH_ATOL_UNITS="1=1e-6,mV=1e-5" the absolute tolerances by unit
 // (SolverOptions::atol_by_unit). CPU s is the process's, all threads.
@@ -45,18 +40,13 @@ int main(int argc, char** argv) {
   const std::string which = argc > 2 ? argv[2] : "joint,leg,three";
   const std::string ls = argc > 3 ? argv[3] : "auto";
   const std::string formulations = argc > 4 ? argv[4] : "spiking,rate";
-  const std::string kernels = argc > 6 ? argv[6] : "phasmid";
-  const std::string integrations = argc > 7 ? argv[7] : "parts";
+  const std::string integrations = argc > 6 ? argv[6] : "parts";
   const int repeats = std::getenv("BENCH_REPEATS") ? std::max(1, std::atoi(std::getenv("BENCH_REPEATS"))) : 3;
   solver::SolverOptions so;
   so.rtol = so.atol = argc > 5 ? std::atof(argv[5]) : 1e-6;  // default: the three-leg configs' tolerance
-  if (const char* e = std::getenv("BENCH_MAXORD")) so.max_order = std::atoi(e);
-  if (std::getenv("BENCH_STALD")) so.stability_limit_detection = true;
   if (const char* e = std::getenv("BENCH_THREADS")) so.threads = std::atoi(e);
   if (const char* e = std::getenv("BENCH_STIFF_TOL")) so.stiff_part_tol = std::atof(e);
   if (const char* e = std::getenv("BENCH_WINDOW_MS")) so.window_ms = std::atof(e);
-  if (const char* e = std::getenv("BENCH_LOOK_AHEAD")) so.window_look_ahead = std::atoi(e);
-  if (const char* e = std::getenv("BENCH_WINDOW_ORDER")) so.window_order = std::atoi(e);
   if (const char* e = std::getenv("BENCH_ATOL_UNITS")) {  // "1=1e-5,mV=1e-4"
     for (std::string item, rest = e; !rest.empty();) {
       const size_t comma = rest.find(',');
@@ -91,20 +81,16 @@ int main(int argc, char** argv) {
   for (const Case& c : cases) {
     if (which.find(c.key) == std::string::npos) continue;
     for (const char* form : {"spiking", "rate"})
-    for (const char* kern : {"phasmid", "sundials"})
     for (const char* integ : {"parts", "neurons", "whole"}) {
-      if (formulations.find(form) == std::string::npos || kernels.find(kern) == std::string::npos ||
-          integrations.find(integ) == std::string::npos)
-        continue;
+      if (formulations.find(form) == std::string::npos || integrations.find(integ) == std::string::npos) continue;
       const model::MotoneuronModel mn = model::parse_motoneuron_model(form);
       std::unique_ptr<model::NetworkModel> m = bench::build_walking_model(c.key, mn);
       solver::SolverOptions sok = so;
-      if (std::string(kern) == "sundials") sok.vector_kernels = solver::VectorKernels::Sundials;
       sok.partitioning = std::string(integ) == "parts"     ? solver::Partitioning::On
                          : std::string(integ) == "neurons" ? solver::Partitioning::Neurons
                                                            : solver::Partitioning::Off;
       solver::Simulator sim(*m, sok);
-      // Best of `repeats` runs: single timings on this VM scatter by up to 1.7x (bench/results).
+      // Best of `repeats` runs: single timings on a shared machine scatter (docs/performance.md).
       double wall = 1e300, cpu = 1e300;
       solver::SolveResult r;
       for (int rep = 0; rep < repeats; ++rep) {
@@ -120,8 +106,8 @@ int main(int argc, char** argv) {
       std::map<std::string, double> f;
       for (auto& x : features::compute_features(*m, r, fo)) f[x.name] = x.value;
       auto get = [&](const char* k) { return f.count(k) ? f[k] : NAN; };
-      const std::string label = std::string(c.label) + " " + form + (std::string(kern) == "sundials" ? " [sun]" : "") +
-                                (std::string(integ) == "parts" ? "" : " [" + std::string(integ) + "]");
+      const std::string label =
+          std::string(c.label) + " " + form + (std::string(integ) == "parts" ? "" : " [" + std::string(integ) + "]");
       std::printf("%-38s %7zu %8.0f %8.2f %8.2f %8ld %9ld %7ld %14.1f %8.3f %8.1f %7.3f %7.3f\n", label.c_str(),
                   m->num_states(), t_end, wall, cpu, r.stats.steps, r.stats.rhs_evals, r.stats.jac_evals, ref, wall / ref,
                   f.count("middle.step_period_ms") ? f["middle.step_period_ms"] : get("period_ms"), get("phase_lag.hind_to_middle"), get("phase_lag.middle_to_front"));

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Method study (issue #21, bench/results "Method study"): for each model, every
+# Method study (docs/performance.md "Naive setups"): for each model, every
 # integrator over a ladder of tolerances, features against a tight-tolerance reference
 # (CVODES BDF, rtol = atol = 1e-10, one system), and the cheapest setting whose features all
 # meet the accuracy (every feature in ms within 0.01 ms, every one in deg within 0.01 deg).
@@ -9,7 +9,7 @@
 # A case is CONFIG[:MOTONEURON] (configs/CONFIG.toml; MOTONEURON "spiking" or "rate" sets
 # [model] motoneuron). Default: single_joint_fti:spiking single_joint_fti:rate
 # three_legs_tetrapod:rate. Environment: PHASMID (default build/phasmid), METHODS (default
-# "cvodes_bdf erk_dp5 erk_bs3"), TOLS (default "1e-4 1e-5 1e-6 1e-7 1e-8"), REPEATS (default 1,
+# "cvodes_bdf dopri5"), TOLS (default "1e-4 1e-5 1e-6 1e-7 1e-8"), REPEATS (default 1,
 # the minimum is kept), PARTITIONED (unset: the model's default; true / false), REF_TOL (1e-10),
 # SIM_EXTRA (more [simulation] lines for the methods' runs, not the reference: "threads = 2").
 # Time: CPU seconds (user + system) of `phasmid simulate` minus those of the same run for 1 ms
@@ -18,7 +18,7 @@
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 PHASMID=${PHASMID:-$ROOT/build/phasmid}
-METHODS=${METHODS:-"cvodes_bdf erk_dp5 erk_bs3"}
+METHODS=${METHODS:-"cvodes_bdf dopri5"}
 TOLS=${TOLS:-"1e-4 1e-5 1e-6 1e-7 1e-8"}
 REPEATS=${REPEATS:-1}
 REF_TOL=${REF_TOL:-1e-10}

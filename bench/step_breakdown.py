@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Per-step cost breakdown from a `perf record` profile (issue #21, bench/results
-"Cost of a step"): self time of every symbol, summed into the parts of an integrator step.
+"""Per-step cost breakdown from a `perf record` profile: self time of every symbol, summed
+into the parts of an integrator step.
 
     perf record -F 5000 -o P.data build/bench/bench_walking 3000 joint auto spiking 1e-6
     perf report -i P.data --no-children --sort dso,symbol --stdio -g none | python3 bench/step_breakdown.py

@@ -7,19 +7,32 @@
 
 namespace phasmid::solver {
 
-CommandSchedule::CommandSchedule(const model::OdeModel& model, const std::vector<double>& p_given, double t_end,
-                                 const std::vector<size_t>& sens_params)
-    : model_(model), p_(p_given), sens_params_(sens_params), trackers_(model.triggers().size()) {
-  // A command time set by a trigger is a function of the other parameters (the event time plus
-  // a constant delay), not a free parameter: there is no sensitivity to it.
+namespace {
+
+// p with every triggered command time "never" until its event (no breakpoint, command off).
+// A command time set by a trigger is a function of the other parameters (the event time plus
+// a constant delay), not a free parameter: there is no sensitivity to it.
+std::vector<double> with_triggers_unresolved(const model::OdeModel& model, std::vector<double> p,
+                                             const std::vector<size_t>& sens_params) {
   for (const auto& tr : model.triggers())
     for (size_t q : tr.targets) {
       if (std::find(sens_params.begin(), sens_params.end(), q) != sens_params.end())
         throw Error("no sensitivity to " + model.parameters().at(q).name + ": it is set by the [[triggers]] event " +
                     tr.event + " (give it a fixed value to differentiate by it)");
-      p_[q] = model::kUnresolvedMs;  // until its event: no breakpoint, command off
+      p[q] = model::kUnresolvedMs;
     }
-  stops_ = model.breakpoints(p_, t_end);
+  return p;
+}
+
+}  // namespace
+
+CommandSchedule::CommandSchedule(const model::OdeModel& model, const std::vector<double>& p_given, double t_end,
+                                 const std::vector<size_t>& sens_params)
+    : model_(model),
+      p_(with_triggers_unresolved(model, p_given, sens_params)),
+      sens_params_(sens_params),
+      trackers_(model.triggers().size()) {
+  stops_ = model.breakpoints(p(), t_end);
   std::sort(stops_.begin(), stops_.end());
   stops_.erase(std::remove_if(stops_.begin(), stops_.end(), [&](double b) { return b <= 0.0 || b >= t_end; }),
                stops_.end());
@@ -38,7 +51,7 @@ void CommandSchedule::stop_time_sensitivities() {
     return best;
   };
   for (size_t j = 0; j < sens_params_.size(); ++j) {
-    auto [bp, bm, hstep] = central_pair(p_, sens_params_[j], [&](const std::vector<double>& q) {
+    auto [bp, bm, hstep] = central_pair(p(), sens_params_[j], [&](const std::vector<double>& q) {
       return model_.breakpoints(q, t_end);
     });
     std::sort(bp.begin(), bp.end());
@@ -57,18 +70,16 @@ void CommandSchedule::stop_time_sensitivities() {
 
 std::vector<RootSpec> CommandSchedule::roots(const std::vector<RootSpec>& caller) const {
   std::vector<RootSpec> all = caller;
-  for (const auto& tr : model_.triggers()) all.push_back({tr.state, tr.level_scale * p_[tr.level_param], 0});
+  for (const auto& tr : model_.triggers()) all.push_back({tr.state, tr.level_scale * p()[tr.level_param], 0});
   return all;
 }
 
 bool CommandSchedule::fire(size_t k, double t, int dir, const double* y, std::vector<ResolvedCommand>& commands) {
   const model::CommandTrigger& tr = model_.triggers()[k];
-  if (!trackers_[k].fires(tr, t, dir, p_, y)) return false;
+  if (!trackers_[k].fires(tr, t, dir, p(), y)) return false;
   const double when = t + tr.delay_ms;
-  for (size_t q : tr.targets) {
-    p_[q] = when;
-    commands.push_back({q, when, k});
-  }
+  p_.set(tr.targets, when);
+  for (size_t q : tr.targets) commands.push_back({q, when, k});
   return true;
 }
 
@@ -120,8 +131,8 @@ void CommandSchedule::apply_jump(double tau, const std::vector<double>& dtau_dp,
   const size_t n = model_.num_states();
   std::vector<double> f_before(n), f_after(n);
   const double delta = 1e-9 * std::max(1.0, std::abs(tau));  // one-sided limits at the switch
-  model_.rhs(tau - delta, y, p_.data(), f_before.data());
-  model_.rhs(tau + delta, y, p_.data(), f_after.data());
+  model_.rhs(tau - delta, y, p().data(), f_before.data());
+  model_.rhs(tau + delta, y, p().data(), f_after.data());
   for (size_t j = 0; j < dtau_dp.size(); ++j)
     if (dtau_dp[j] != 0.0)
       for (size_t i = 0; i < n; ++i) s[j][i] += (f_before[i] - f_after[i]) * dtau_dp[j];

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "model/ode_model.hpp"
+#include "solver/run_parameters.hpp"
 #include "solver/simulator.hpp"
 #include "solver/trigger_tracker.hpp"
 
@@ -45,7 +46,9 @@ class CommandSchedule {
                   const std::vector<size_t>& sens_params);
 
   // The parameters with the triggered command times resolved so far.
-  const std::vector<double>& p() const { return p_; }
+  const std::vector<double>& p() const { return p_.values(); }
+  // Their owner, for the drivers to register what mirrors them (RunParameters::bind, mirror).
+  RunParameters& parameters() { return p_; }
   // The caller's roots followed by one per trigger (its threshold, both directions).
   std::vector<RootSpec> roots(const std::vector<RootSpec>& caller) const;
   const std::vector<model::CommandTrigger>& triggers() const { return model_.triggers(); }
@@ -58,8 +61,8 @@ class CommandSchedule {
   double t_end() const { return stops_.back(); }
 
   // A crossing of trigger k's threshold at t in direction dir, y the full state there. If it
-  // fires the trigger, its targets take t + delay in p(), are appended to `commands`, and the
-  // result is true.
+  // fires the trigger, its targets take t + delay in p() (and in every mirror of parameters()),
+  // are appended to `commands`, and the result is true.
   bool fire(size_t k, double t, int dir, const double* y, std::vector<ResolvedCommand>& commands);
   // d t_event / dp_j of trigger k's crossing at t, from the crossing state's rate of change
   // `rate` (f of the trigger's state) and its sensitivities s_state[j]. Throws Error for a
@@ -83,7 +86,7 @@ class CommandSchedule {
   void stop_time_sensitivities();
 
   const model::OdeModel& model_;
-  std::vector<double> p_;
+  RunParameters p_;
   std::vector<size_t> sens_params_;
   std::vector<double> stops_;
   std::vector<std::vector<double>> dtau_;  // per stop, per sensitivity parameter

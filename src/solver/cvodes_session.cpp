@@ -7,7 +7,6 @@
 #include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
-#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include <cstdlib>
 #include <utility>
@@ -48,14 +47,13 @@ void CvodesSession::Free::operator()(void* mem) const { CVodeFree(&mem); }
 void CvodesSession::Free::operator()(N_Vector v) const { N_VDestroy(v); }
 void CvodesSession::Free::operator()(SUNMatrix A) const { SUNMatDestroy(A); }
 void CvodesSession::Free::operator()(SUNLinearSolver ls) const { SUNLinSolFree(ls); }
-void CvodesSession::Free::operator()(SUNNonlinearSolver nls) const { SUNNonlinSolFree(nls); }
 void CvodesSession::FreeArray::operator()(N_Vector* v) const { N_VDestroyVectorArray(v, n); }
 
 CvodesSession::CvodesSession(SUNContext ctx, const SolverOptions& options, const double* y0, size_t n, CVRhsFn rhs,
                              void* user_data)
     : options_(options), ctx_(ctx) {
-  y_.reset(new_state_vector(ctx, options, y0, n));
-  mem_.reset(CVodeCreate(options.integrator == IntegratorKind::Adams ? CV_ADAMS : CV_BDF, ctx));
+  y_.reset(new_state_vector(ctx, y0, n));
+  mem_.reset(CVodeCreate(CV_BDF, ctx));
   if (!mem_) throw SolverError("CVodeCreate failed");
   check_cvodes(CVodeSetErrHandlerFn(mem(), [](int, const char*, const char*, char*, void*) {}, nullptr), "silence");
   check_cvodes(CVodeInit(mem(), rhs, 0.0, y()), "CVodeInit");
@@ -63,31 +61,23 @@ CvodesSession::CvodesSession(SUNContext ctx, const SolverOptions& options, const
   check_cvodes(CVodeSetUserData(mem(), user_data), "CVodeSetUserData");
   check_cvodes(CVodeSetMaxNumSteps(mem(), options.max_steps), "CVodeSetMaxNumSteps");
   if (options.max_step_ms > 0) check_cvodes(CVodeSetMaxStep(mem(), options.max_step_ms), "CVodeSetMaxStep");
-  if (options.max_order > 0) check_cvodes(CVodeSetMaxOrd(mem(), options.max_order), "CVodeSetMaxOrd");
-  if (options.stability_limit_detection) check_cvodes(CVodeSetStabLimDet(mem(), SUNTRUE), "CVodeSetStabLimDet");
 }
 
 CvodesSession::~CvodesSession() = default;
 
 void CvodesSession::set_linear_solver(LinearSystem kind, long half_bandwidth, long nnz, CVLsJacFn jac) {
-  if (options_.integrator == IntegratorKind::Adams) {
-    NLS_.reset(SUNNonlinSol_FixedPoint(y(), 0, ctx_));
-    check_cvodes(CVodeSetNonlinearSolver(mem(), NLS_.get()), "CVodeSetNonlinearSolver");
-    return;
-  }
   const sunindextype n = N_VGetLength(y());
-  const bool phasmid_kernels = options_.vector_kernels == VectorKernels::Phasmid;
   if (kind == LinearSystem::Band) {
     A_.reset(SUNBandMatrix(n, half_bandwidth, half_bandwidth, ctx_));
     LS_.reset(SUNLinSol_Band(y(), A_.get(), ctx_));
   } else if (kind == LinearSystem::Sparse) {
     A_.reset(SUNSparseMatrix(n, n, static_cast<sunindextype>(nnz), CSC_MAT, ctx_));
     LS_.reset(SUNLinSol_KLU(y(), A_.get(), ctx_));
-    if (phasmid_kernels) install_sparse_kernels(A_.get());
+    install_sparse_kernels(A_.get());
   } else {
     A_.reset(SUNDenseMatrix(n, n, ctx_));
     LS_.reset(SUNLinSol_Dense(y(), A_.get(), ctx_));
-    if (phasmid_kernels) install_dense_kernels(A_.get(), LS_.get());
+    install_dense_kernels(A_.get(), LS_.get());
   }
   if (!A_ || !LS_) throw SolverError("CVODES setup failed: matrix or linear solver not created");
   check_cvodes(CVodeSetLinearSolver(mem(), LS_.get(), A_.get()), "CVodeSetLinearSolver");
@@ -103,25 +93,13 @@ void CvodesSession::init_sensitivities(const std::vector<std::vector<double>>& s
     for (size_t i = 0; i < n; ++i) NV_Ith_S(yS_.get()[j], i) = s0[static_cast<size_t>(j)][i];
   const bool staggered = options_.sensitivity_method == SensitivityMethod::Staggered;
   const int method = staggered ? CV_STAGGERED : CV_SIMULTANEOUS;
-  if (options_.sensitivity_rhs == SensitivityRhs::Batched && ns_ > 1)
+  if (ns_ > 1)
     check_cvodes(CVodeSensInit(mem(), ns_, method, all, s()), "CVodeSensInit");
   else
     check_cvodes(CVodeSensInit1(mem(), ns_, method, one, s()), "CVodeSensInit1");
-  if (options_.integrator == IntegratorKind::Adams) {
-    NLS_sens_.reset(SUNNonlinSol_FixedPointSens(ns_ + 1, y(), 0, ctx_));
-    if (staggered) check_cvodes(CVodeSetNonlinearSolverSensStg(mem(), NLS_sens_.get()), "CVodeSetNonlinearSolverSensStg");
-    else check_cvodes(CVodeSetNonlinearSolverSensSim(mem(), NLS_sens_.get()), "CVodeSetNonlinearSolverSensSim");
-  }
   check_cvodes(CVodeSetSensParams(mem(), nullptr, const_cast<double*>(pbar.data()), nullptr), "CVodeSetSensParams");
   const double f = options_.sensitivity_tolerance_factor;
-  if (!options_.sensitivity_atol_scale.empty()) {
-    if (options_.sensitivity_atol_scale.size() != n) throw Error("internal: sensitivity_atol_scale size mismatch");
-    std::unique_ptr<N_Vector, FreeArray> atolS(N_VCloneVectorArray(ns_, y()), FreeArray{ns_});
-    for (int j = 0; j < ns_; ++j)
-      for (size_t i = 0; i < n; ++i)
-        NV_Ith_S(atolS.get()[j], i) = f * options_.atol / pbar[static_cast<size_t>(j)] * options_.sensitivity_atol_scale[i];
-    check_cvodes(CVodeSensSVtolerances(mem(), f * options_.rtol, atolS.get()), "CVodeSensSVtolerances");
-  } else if (f == 1.0) {
+  if (f == 1.0) {
     check_cvodes(CVodeSensEEtolerances(mem()), "CVodeSensEEtolerances");
   } else {
     std::vector<double> atolS(pbar.size());

@@ -1,7 +1,7 @@
 #pragma once
 // One CVODES integrator and everything it owns (AMICI's "Solver" without the model): the
-// CVODES memory, the state and sensitivity N_Vectors, the Jacobian matrix, the linear or
-// fixed-point (non)linear solvers, tolerances and SolverOptions' step controls. Shared by the
+// CVODES memory, the state and sensitivity N_Vectors, the Jacobian matrix, the linear solver,
+// tolerances and SolverOptions' step controls. Shared by the
 // whole-system driver (one session) and the partitioned driver (one session per part).
 //
 // Contract:
@@ -21,7 +21,8 @@
 #include <vector>
 
 #include "solver/integrator_session.hpp"
-#include "solver/simulator.hpp"
+#include "solver/solver_options.hpp"
+#include "solver/solver_result.hpp"
 
 namespace phasmid::solver {
 
@@ -55,21 +56,20 @@ enum class LinearSystem { Dense, Band, Sparse };
 
 class CvodesSession : public IntegratorSession {
  public:
-  // The integrator at t = 0 from y0 (n states) for rhs(t, y, ydot, user_data): BDF or Adams,
-  // scalar tolerances, step options and a silent error handler (phasmid reports failures).
+  // The integrator at t = 0 from y0 (n states) for rhs(t, y, ydot, user_data): BDF, scalar
+  // tolerances, step options and a silent error handler (phasmid reports failures).
   CvodesSession(SUNContext ctx, const SolverOptions& options, const double* y0, size_t n, CVRhsFn rhs,
                 void* user_data);
   ~CvodesSession() override;
   CvodesSession(const CvodesSession&) = delete;
   CvodesSession& operator=(const CvodesSession&) = delete;
 
-  // BDF: Newton with the chosen linear system, Jacobian `jac` (nullptr: CVODES' difference
-  // quotients; dense and band only); phasmid's compiled matrix kernels where options ask for
-  // them (dense and sparse). Adams: fixed-point iteration, the arguments are not used.
+  // Newton with the chosen linear system and Jacobian `jac`; phasmid's compiled matrix kernels
+  // for dense and sparse matrices.
   void set_linear_solver(LinearSystem kind, long half_bandwidth, long nnz, CVLsJacFn jac);
-  // Forward sensitivities of s0.size() parameters from s0[j] (n values each): batched right-hand
-  // side `all` (SensitivityRhs::Batched, more than one parameter) or `one` per parameter;
-  // pbar scales the sensitivity tolerances (SolverOptions::sensitivity_*).
+  // Forward sensitivities of s0.size() parameters from s0[j] (n values each): the batched
+  // right-hand side `all` for more than one parameter, `one` for a single one; pbar scales the
+  // sensitivity tolerances (SolverOptions::sensitivity_*).
   void init_sensitivities(const std::vector<std::vector<double>>& s0, CVSensRhsFn all, CVSensRhs1Fn one,
                           const std::vector<double>& pbar);
   // Root functions g (directions.size() of them) located in the given directions.
@@ -102,7 +102,6 @@ class CvodesSession : public IntegratorSession {
     void operator()(N_Vector v) const;
     void operator()(SUNMatrix A) const;
     void operator()(SUNLinearSolver ls) const;
-    void operator()(SUNNonlinearSolver nls) const;
   };
   template <class Handle>
   using Owned = std::unique_ptr<std::remove_pointer_t<Handle>, Free>;
@@ -115,14 +114,13 @@ class CvodesSession : public IntegratorSession {
   const SolverOptions options_;  // a copy: callers may pass a temporary adjusted copy
   SUNContext ctx_;
   int ns_ = 0;
-  // Destroyed in reverse order of declaration: the nonlinear solvers, then the CVODES memory,
-  // then the linear solver and matrix it used, then the vectors.
+  // Destroyed in reverse order of declaration: the CVODES memory, then the linear solver and
+  // matrix it used, then the vectors.
   Owned<N_Vector> y_;
   std::unique_ptr<N_Vector, FreeArray> yS_;
   Owned<SUNMatrix> A_;
   Owned<SUNLinearSolver> LS_;
   std::unique_ptr<void, Free> mem_;
-  Owned<SUNNonlinearSolver> NLS_, NLS_sens_;
   SolverStats before_restarts_;  // CVodeReInit resets CVODES' counters
 };
 

@@ -14,7 +14,7 @@ namespace {
 constexpr double kUround = std::numeric_limits<double>::epsilon();
 // A failed stage's error norm: large enough that the controller takes its smallest step (0.1 h).
 constexpr double kFailedNorm = 1e10;
-constexpr int kMaxErrorFailures = 50;  // as ErkSession: spike flanks reject several steps in a row
+constexpr int kMaxErrorFailures = 50;  // spike flanks reject several steps in a row (ARKODE's 7 is too few)
 
 // ERKStep's default adaptivity (ERKStepSetDefaults and arkode_adapt_impl.h, SUNDIALS 6.4): a PI
 // controller with exponents over the embedding's order 4, and the bounds named as there.
@@ -30,7 +30,7 @@ constexpr double kE[7] = {kA[6][0] - dormand_prince::kBhat[0], 0, kA[6][2] - dor
                           kA[6][3] - dormand_prince::kBhat[3], kA[6][4] - dormand_prince::kBhat[4],
                           kA[6][5] - dormand_prince::kBhat[5], -dormand_prince::kBhat[6]};
 
-// Flags with CVODES' / ARKODE's values (integrator_session.hpp).
+// Flags with CVODES' values (integrator_session.hpp).
 constexpr int kTooMuchWork = -1, kErrFailure = -3, kRhsFail = -8, kIllInput = -22, kBadT = -25;
 
 int sign_of(double g) { return g > 0 ? 1 : (g < 0 ? -1 : 0); }
@@ -46,7 +46,7 @@ DopriSession::DopriSession(SUNContext ctx, const SolverOptions& options, const d
       atol_(n, options.atol),
       max_steps_(options.max_steps),
       hmax_(options.max_step_ms) {
-  y_.reset(new_state_vector(ctx, options, y0, n));
+  y_.reset(new_state_vector(ctx, y0, n));
   for (OwnedVector* v : {&yn_, &yold_, &ynew_, &stage_, &fold_}) v->reset(N_VClone(y_.get()));
   for (OwnedVector& k : k_) k.reset(N_VClone(y_.get()));
   for (OwnedVector& k : k_) N_VConst(0.0, k.get());  // read by dky before the first advance

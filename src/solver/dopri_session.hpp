@@ -1,12 +1,13 @@
 #pragma once
 // Dormand-Prince 5(4) written for phasmid's small systems (IntegratorKind::Dopri5, "dopri5"),
-// behind the IntegratorSession interface next to ARKODE's ERKStep (ErkSession).
+// behind the IntegratorSession interface next to CvodesSession.
 //
 // Why a stepper of our own: on the walking networks' parts (14-26 states) ARKODE's per-step
 // work outside the right-hand side (vector kernels called one combination at a time through
-// N_Vector operations, the step and stop-time logic) is a quarter of a Dormand-Prince run
-// (bench/results "The cost of a step"). Here each stage is one fused loop over the
-// states, and the step, its error norm and the dense output read the same few arrays.
+// N_Vector operations, the step and stop-time logic) weighs as much as a large part of the
+// right-hand side (docs/performance.md "What the build contributes"). Here each stage is one
+// fused loop over the states, and the step, its error norm and the dense output read the same
+// few arrays.
 //
 // The method is ARKODE's: the same Butcher table (first same as last: six right-hand sides
 // per accepted step), the error weights 1 / (rtol |y_n| + atol_i) at the step's start, ERKStep's
@@ -16,7 +17,7 @@
 // its first-step estimate, the cubic Hermite interpolant of the step's end values and slopes,
 // and CVODES' Illinois root search on it. So it takes ARKODE's steps up to rounding.
 //
-// Contract (as ErkSession's):
+// Contract:
 //  - advance(tout, t, itask) returns 0 (tout reached in normal mode, or one step taken in
 //    one-step mode; after a root inside the last step, its end without a new step), 1 (the stop time reached: y() is y(tstop), the stop is then cleared),
 //    2 (a root: y() is y(t_root); the next call returns the step's further roots first),

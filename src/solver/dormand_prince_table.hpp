@@ -2,7 +2,7 @@
 // Dormand and Prince's 5(4) pair (J. Comput. Appl. Math. 6, 1980), as ARKODE's
 // ARKODE_DORMAND_PRINCE_7_4_5: nodes c, stage matrix A (row 6 is the fifth-order solution's
 // weights, so stage 6's input is y_{n+1} and its slope the next step's first: FSAL) and the
-// fourth-order embedding's weights. Shared by solver/dopri_session.cpp and bench/bench_exprk.cpp.
+// fourth-order embedding's weights (solver/dopri_session.cpp).
 namespace phasmid::solver::dormand_prince {
 
 inline constexpr double kC[7] = {0, 0.2, 0.3, 0.8, 8.0 / 9, 1, 1};

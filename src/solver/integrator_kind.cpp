@@ -5,11 +5,8 @@
 namespace phasmid::solver {
 
 namespace {
-const std::pair<IntegratorKind, const char*> kNames[] = {
-    {IntegratorKind::Bdf, "cvodes_bdf"},          {IntegratorKind::Adams, "cvodes_adams"},
-    {IntegratorKind::ErkBs3, "erk_bs3"},          {IntegratorKind::ErkDp5, "erk_dp5"},
-    {IntegratorKind::ErkVerner65, "erk_verner65"}, {IntegratorKind::ErkFehlberg78, "erk_fehlberg78"},
-    {IntegratorKind::Dopri5, "dopri5"}};
+const std::pair<IntegratorKind, const char*> kNames[] = {{IntegratorKind::Bdf, "cvodes_bdf"},
+                                                          {IntegratorKind::Dopri5, "dopri5"}};
 }  // namespace
 
 std::optional<IntegratorKind> integrator_from_name(const std::string& name) {

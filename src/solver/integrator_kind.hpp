@@ -1,11 +1,10 @@
 #pragma once
 // The names of the integrators in configs and on the command line ([simulation] integrator,
-// docs/config.md): "cvodes_bdf", "cvodes_adams", "erk_bs3", "erk_dp5", "erk_verner65",
-// "erk_fehlberg78", "dopri5" (solver::IntegratorKind).
+// docs/config.md): "cvodes_bdf" and "dopri5" (solver::IntegratorKind).
 #include <optional>
 #include <string>
 
-#include "solver/simulator.hpp"
+#include "solver/solver_options.hpp"
 
 namespace phasmid::solver {
 

@@ -1,21 +1,19 @@
 #pragma once
-// The integrator a driver advances (AMICI's "Solver" without the model): CVODES BDF/Adams
-// (CvodesSession, solver/cvodes_session.hpp), ARKODE's explicit Runge-Kutta ERKStep
-// (ErkSession, solver/erk_session.hpp) or phasmid's own Dormand-Prince (DopriSession,
+// The integrator a driver advances (AMICI's "Solver" without the model): CVODES BDF
+// (CvodesSession, solver/cvodes_session.hpp) or phasmid's own Dormand-Prince (DopriSession,
 // solver/dopri_session.hpp). The whole-system and the partitioned driver see only this
 // interface, so events, restarts at switches, triggers and the parts' interpolation work with
-// any of them.
+// either.
 //
 // Contract:
-//  - advance() returns the package's flag with CVODES' values: CVODES, ARKODE and DopriSession
-//    share 0 success, 1 stop time reached, 2 root found and the itask values 1 normal, 2 one
-//    step (static_assert in erk_session.cpp); negative flags are failures (flag_name names
-//    them).
+//  - advance() returns the package's flag with CVODES' values: 0 success, 1 stop time reached,
+//    2 root found and the itask values 1 normal, 2 one step; negative flags are failures
+//    (flag_name names them).
 //  - restart(t) restarts the integrator from y() at t (a switch of the right-hand side);
 //    counters are summed over restarts (stats()).
 //  - dky(t, k, out) is the k-th derivative at t of the last step's interpolating polynomial
 //    (k <= interpolation_degree()); a negative return means t is outside the last step.
-//  - Sensitivities exist on CVODES only: the other sessions throw from init_sensitivities.
+//  - Sensitivities exist on CVODES only (CvodesSession::init_sensitivities).
 #include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
 
@@ -27,7 +25,8 @@
 
 #include "common/error.hpp"
 #include "solver/serial_kernels.hpp"
-#include "solver/simulator.hpp"
+#include "solver/solver_options.hpp"
+#include "solver/solver_result.hpp"
 
 namespace phasmid::solver {
 
@@ -39,12 +38,11 @@ inline std::string take_flag_name(char* name, int flag) {
 }
 
 // A session's state vector: a new serial vector holding y0, with phasmid's compiled kernels
-// unless the options ask for SUNDIALS' own (the package's work vectors are clones of it and
-// copy its ops table). The caller owns it.
-inline N_Vector new_state_vector(SUNContext ctx, const SolverOptions& options, const double* y0, size_t n) {
+// (the package's work vectors are clones of it and copy its ops table). The caller owns it.
+inline N_Vector new_state_vector(SUNContext ctx, const double* y0, size_t n) {
   N_Vector y = N_VNew_Serial(static_cast<sunindextype>(n), ctx);
   if (!y) throw SolverError("N_VNew_Serial failed");
-  if (options.vector_kernels == VectorKernels::Phasmid) install_serial_kernels(y);
+  install_serial_kernels(y);
   for (size_t i = 0; i < n; ++i) NV_Ith_S(y, i) = y0[i];
   return y;
 }
@@ -68,7 +66,7 @@ class IntegratorSession {
   virtual double current_time() = 0;
   virtual double last_step() = 0;
   virtual std::string flag_name(int flag) const = 0;
-  virtual const char* package() const = 0;  // "CVODES", "ARKODE": the start of failure messages
+  virtual const char* package() const = 0;  // "CVODES", "phasmid dopri5": the start of failure messages
 
   virtual N_Vector y() const = 0;
   // A scratch vector of the state's size (for dky), owned by the session.

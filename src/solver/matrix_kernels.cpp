@@ -127,8 +127,8 @@ int dense_lu_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, Real)
     if (piv[k] != k) std::swap(xd[k], xd[piv[k]]);
   // Both substitutions carry the next unknown in a register (c): it is finished by one scalar
   // update before the vector update of the others, so that the chain from one unknown to the
-  // next does not wait for that vector update to be stored and read back (the solve was a
-  // fifth of a rate run; bench/results "The cost of a step").
+  // next does not wait for that vector update to be stored and read back (the solve is a
+  // large part of a BDF step on the rate models).
   Real c = xd[0];
   for (Index k = 0; k + 1 < n; ++k) {  // L y = P b, L unit lower triangular
     const Real* col_k = a[k];

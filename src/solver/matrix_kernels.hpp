@@ -1,9 +1,10 @@
 #pragma once
 // Compiled replacements for the matrix arithmetic CVODES' direct linear solvers call every
 // Newton setup (M = I - gamma J: zero, copy, scale-add-identity) and for the dense LU
-// factorisation and solve. Same reason as solver/serial_kernels.hpp: Debian's libsundials is
-// built without optimisation, so its SUNDlsMat_denseGETRF/GETRS and SUNMat*_Dense/_Sparse
-// loops cost several times the model's own work (bench/results). The matrices and the
+// factorisation and solve. Same reason as solver/serial_kernels.hpp: with forward
+// sensitivities CVODES solves one system per parameter each corrector iteration, and
+// SUNDlsMat_denseGETRF/GETRS and SUNMat*_Dense/_Sparse are generic loops (docs/performance.md
+// "What the build contributes"). The matrices and the
 // solver keep SUNDIALS' content layout (and the dense solver its pivot array), so everything
 // else (CVODES' bookkeeping, KLU) works on them unchanged.
 #include <sundials/sundials_linearsolver.h>

@@ -25,17 +25,21 @@
 // roll-backs are found after the window; the polynomial the others read next is taken once, at
 // its last step in the window. Without triggers the windows lie on a fixed grid and a part may
 // complete later windows as soon as the parts it reads have completed the ones before, while
-// another part is still behind (SolverOptions::window_look_ahead); with triggers, whose
+// another part is still behind (kWindowLookAhead windows at most); with triggers, whose
 // commands send parts back, every part completes one window before any starts the next. The
 // numbers depend on the windows, not on the thread count or timing; threads = 1 is the
 // scheduler above.
 //
 // Not for forward sensitivities (Simulator::run then integrates the whole model as one
-// system); SolverOptions::partitioning chooses; bench/results compares the two.
+// system); SolverOptions::partitioning chooses (docs/solver.md).
+//
+// Files: partitioned_parts.hpp (the parts and their sessions), partitioned_driver.hpp (the
+// driver: events, outputs, triggers, roll-backs in partitioned_simulator.cpp) and one file
+// per scheduler: partitioned_sequential.cpp, partitioned_windowed.cpp, partitioned_grid.cpp.
 #include <vector>
 
 #include "model/ode_model.hpp"
-#include "solver/simulator.hpp"
+#include "solver/simulator.hpp"  // OutputTimes, SolverOptions, SolveResult
 
 namespace phasmid::solver {
 

@@ -4,8 +4,8 @@
 // window, when the part may be several steps past those times.
 //
 // Each step keeps the part's states and their time derivatives at both ends, and a state
-// inside it is the cubic Hermite interpolant of the two: ARKODE's explicit Runge-Kutta
-// interpolant (degree 3) itself, and for CVODES a C1 dense output of the same order as that
+// inside it is the cubic Hermite interpolant of the two: Dormand-Prince's own (dopri5's
+// interpolant is degree 3) itself, and for CVODES a C1 dense output of the same order as that
 // of an order-3 method (the step's own Nordsieck polynomial would cost q + 1 evaluations of
 // the whole state per step, where this needs one: the derivative at the step's end; the
 // start is the previous step's end). Why: the record is taken at every step of every part

@@ -3,7 +3,7 @@
 // the dynamic loader took CVODES from. scripts/setup.sh builds Debian's own SUNDIALS source
 // with optimisation into build/sundials/install, because Debian's binary package is -O0 code;
 // a build against the binary package loads it from /usr/lib instead: the same numbers, slower
-// (bench/results "SUNDIALS built with optimisation").
+// (docs/performance.md "What the build contributes").
 #include <string>
 
 namespace phasmid::solver {

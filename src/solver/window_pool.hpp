@@ -5,7 +5,7 @@
 // caller never waits for a worker that has not claimed anything: on a machine whose other
 // cores are busy the caller does all the work itself at almost no extra cost (an OpenMP team
 // would wait at its barrier for every thread to be scheduled, and with the default spinning
-// wait policy took 35x the sequential time on a loaded 2-core machine; bench/results).
+// wait policy it was many times slower than the sequential run on a loaded machine).
 // A worker spins briefly for the next call, then sleeps. The order in which tasks run is not
 // fixed: tasks must not depend on each other.
 #include <atomic>

@@ -115,7 +115,7 @@ TEST(CompiledRhs, RunsGiveTheSameTrajectory) {
   const auto grid = solver::output_grid(1500.0, 1.0);
   for (auto part : {solver::Partitioning::Off, solver::Partitioning::Neurons}) {
     solver::SolverOptions o;
-    o.integrator = solver::IntegratorKind::ErkDp5;
+    o.integrator = solver::IntegratorKind::Dopri5;
     o.rtol = o.atol = 1e-6;
     o.partitioning = part;
     const solver::SolveResult generic = solver::Simulator(*joint, o).run(p, grid);

@@ -1,7 +1,7 @@
 #pragma once
-// A check both integrator sessions share (tests/solver/test_command_schedule.cpp for CVODES,
-// test_erk_session.cpp for ERKStep): integrating towards 100 ms, the session stops at its stop
-// time, 50 ms, exactly.
+// Checks the integrator sessions share (tests/solver/test_command_schedule.cpp for CVODES,
+// test_dopri_session.cpp for Dormand-Prince): integrating towards 100 ms, the session stops at
+// its stop time, 50 ms, exactly; roots of the harmonic oscillator in their directions.
 #include <gtest/gtest.h>
 
 #include <nvector/nvector_serial.h>

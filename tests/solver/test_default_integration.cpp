@@ -1,5 +1,5 @@
 // The model kinds' default integration settings (OdeScenario defaults, chosen by
-// bench/method_study.sh; bench/results "Method study") against a tight-tolerance
+// bench/method_study.sh; docs/solver.md "Integrators") against a tight-tolerance
 // reference, CVODES BDF at rtol = atol = 1e-10 as one system: every feature in ms within
 // 0.01 ms, every one in deg within 0.01 deg. The single FTi joint as shipped
 // (configs/single_joint_fti.toml, Dormand-Prince 5(4) at 1e-6 in phasmid's stepper, 9 s), the
@@ -32,6 +32,7 @@ void expect_default_matches_reference(const config::Config& cfg, const char* wha
   ref.solver.integrator = solver::IntegratorKind::Bdf;
   ref.solver.rtol = ref.solver.atol = 1e-10;
   ref.solver.partitioning = solver::Partitioning::Off;
+  ref.solver.stiff_part_atol_by_unit.clear();  // only with the neurons partition (SolverOptions::validate)
   const auto p = scenario->parameters().values();
   std::map<std::string, double> want;
   for (const auto& f : scenario->evaluate_features(p, ref)) want[f.name] = f.value;
@@ -54,7 +55,7 @@ void expect_default_matches_reference(const config::Config& cfg, const char* wha
   EXPECT_GE(gated, 4u);
 }
 
-// The single joint's fastest setting at the Brian2 comparison's gate (bench/results
+// The single joint's fastest setting at the Brian2 comparison's gate (docs/solver.md
 // "Spiking cells apart"): the motoneurons, muscles and mechanics on Dormand-Prince at 1e-4, the
 // CPG and interneurons on CVODES BDF at stiff_part_tol 1e-7; period and extremal angles within
 // 0.01 ms and 0.01 deg. The flexion and extension durations (burst-located) are 0.19 ms off at
@@ -63,7 +64,7 @@ void expect_default_matches_reference(const config::Config& cfg, const char* wha
 config::Config single_joint_neurons_partition(const std::string& extra) {
   return config::parse_config(
       "[model]\ntype = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\n"
-      "[simulation]\nt_end_ms = 9000\ndiscard_ms = 2000\nintegrator = \"erk_dp5\"\nrtol = 1e-4\natol = 1e-4\n"
+      "[simulation]\nt_end_ms = 9000\ndiscard_ms = 2000\nintegrator = \"dopri5\"\nrtol = 1e-4\natol = 1e-4\n"
       "partitioned = \"neurons\"\nstiff_part_tol = 1e-7\n" + extra,
       "single_joint_neurons.toml");
 }
@@ -85,8 +86,7 @@ TEST(DefaultIntegration, SingleJointNeuronsPartitionMatchesTheTightReference) {
 }
 
 // The same with the network part's potentials at atol 1e-4 mV (stiff_part_atol_by_unit; its rtol
-// and other atol stay 1e-7): the middle of the interval of values that keep the gate
-// (bench/results "The network part's absolute tolerance").
+// and other atol stay 1e-7): the middle of the interval of values that keep the gate.
 TEST(DefaultIntegration, SingleJointNeuronsPartitionLooserNetworkPotentialsMatchTheTightReference) {
   auto cfg = single_joint_neurons_partition("stiff_part_atol_by_unit = { mV = 1e-4 }\n");
   auto scenario = config::build_scenario(cfg);
@@ -94,7 +94,7 @@ TEST(DefaultIntegration, SingleJointNeuronsPartitionLooserNetworkPotentialsMatch
   expect_default_matches_reference(cfg, "single joint (spiking, neurons partition, network mV atol 1e-4)", false);
 }
 
-// The setting of the Brian2 head-to-head (bench/results "Dormand-Prince of our own"):
+// The setting of the Brian2 head-to-head (docs/performance.md "phasmid vs Brian2"):
 // phasmid's Dormand-Prince on the spiking part at 3.5e-5, the network part's potentials at atol
 // 1e-4 mV; 3.5e-5 is the loosest tolerance of that ladder whose tighter rungs all meet the gate.
 TEST(DefaultIntegration, SingleJointBrian2HeadToHeadSettingMatchesTheTightReference) {
@@ -125,9 +125,9 @@ TEST(DefaultIntegration, ThreeLegsOnTwoThreadsMatchTheTightReference) {
   }
 }
 
-// The fastest setting of the three legs with rate motoneurons (bench/results "Three legs on
-// two threads"): two threads in 1 ms windows with the per-unit absolute tolerances of
-// "Absolute tolerances by unit", still within the gate of BDF 1e-10.
+// The fastest setting of the three legs with rate motoneurons (docs/performance.md "The 2013
+// timings"): two threads in 1 ms windows with per-unit absolute tolerances, still within the
+// gate of BDF 1e-10.
 TEST(DefaultIntegration, RateThreeLegsFastestSettingMatchesTheTightReference) {
   auto cfg = config::parse_config(
       "[model]\ntype = \"three_legs\"\ngait = \"tetrapod\"\nmotoneuron = \"rate\"\n"

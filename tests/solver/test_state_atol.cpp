@@ -34,7 +34,7 @@ solver::SolveResult run_leg(solver::Partitioning partitioning, const std::vector
 solver::SolveResult run_neurons_partition(const std::vector<std::pair<std::string, double>>& stiff_by_unit) {
   auto cfg = config::parse_config(
       "[model]\ntype = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\n"
-      "[simulation]\nintegrator = \"erk_dp5\"\nrtol = 1e-4\natol = 1e-4\npartitioned = \"neurons\"\n",
+      "[simulation]\nintegrator = \"dopri5\"\nrtol = 1e-4\natol = 1e-4\npartitioned = \"neurons\"\n",
       "j.toml");
   auto m = config::build_model(cfg);
   solver::SolverOptions o = config::simulation_settings(cfg).solver;
@@ -63,7 +63,7 @@ TEST(StateAtol, AUnitNoStateHasIsAnError) {
       run_leg(partitioning, {{"mV", 1e-5}, {"rad/ms", 1e-6}});
       ADD_FAILURE() << "no error";
     } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("atol_by_unit: no state of this model has unit 'rad/ms'"), std::string::npos)
+      EXPECT_NE(std::string(e.what()).find("solver option 'atol_by_unit': no state of this model has unit 'rad/ms'"), std::string::npos)
           << e.what();
       EXPECT_NE(std::string(e.what()).find("'rad/s'"), std::string::npos) << e.what();
     }
@@ -84,7 +84,7 @@ TEST(StateAtol, TheNeuronsPartitionsNetworkPartTakesItsOwn) {
     run_neurons_partition({{"rad/ms", 1e-6}});
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("stiff_part_atol_by_unit: no state of this model has unit 'rad/ms'"),
+    EXPECT_NE(std::string(e.what()).find("solver option 'stiff_part_atol_by_unit': no state of this model has unit 'rad/ms'"),
               std::string::npos)
         << e.what();
   }
@@ -111,7 +111,7 @@ TEST(StateAtol, ConfigKey) {
   EXPECT_THROW(config::simulation_settings(config::parse_config(head + "atol_by_unit = { mV = 0 }\n", "b.toml")), Error);
   EXPECT_THROW(config::simulation_settings(config::parse_config(head + "atol_by_unit = 1e-5\n", "c.toml")), Error);
   EXPECT_THROW(config::simulation_settings(config::parse_config(head + "threads = 0\n", "d.toml")), Error);
-  const std::string neurons = "partitioned = \"neurons\"\nintegrator = \"erk_dp5\"\n";
+  const std::string neurons = "partitioned = \"neurons\"\nintegrator = \"dopri5\"\n";
   const auto t = config::simulation_settings(
       config::parse_config(head + neurons + "stiff_part_atol_by_unit = { mV = 1e-4 }\n", "e.toml"));
   ASSERT_EQ(t.solver.stiff_part_atol_by_unit.size(), 1u);
@@ -125,7 +125,7 @@ TEST(StateAtol, ConfigKey) {
     EXPECT_NE(std::string(e.what()).find("'stiff_part_atol_by_unit' tolerances must be > 0"), std::string::npos) << e.what();
   }
   // Without the neurons partition, or with BDF everywhere, it would change nothing: refused.
-  for (const std::string& other : {std::string("partitioned = true\nintegrator = \"erk_dp5\"\n"),
+  for (const std::string& other : {std::string("partitioned = true\nintegrator = \"dopri5\"\n"),
                                    std::string("partitioned = \"neurons\"\nintegrator = \"cvodes_bdf\"\n")}) {
     try {
       config::simulation_settings(config::parse_config(head + other + "stiff_part_atol_by_unit = { mV = 1e-4 }\n", "g.toml"));
