@@ -5,16 +5,13 @@
 #
 #   bash bench/bench_brian2.sh [REPEATS [MODEL]]   (default 3, single_joint_fti; or middle_leg_forward)
 #   PHASMID=path overrides build/phasmid; PHASMID_TOLS, RK4_DTS, GSL_METHODS, GSL_ERRORS, GSL_DT
-#   the ladders (GSL_METHODS: Brian2's adaptive GSL pairs, default "rkf45 rkck");
-#   PHASMID_METHODS the phasmid integrators ([simulation] integrator; default "cvodes_bdf dopri5").
-#   NEURONS_TOLS: rows with partitioned = "neurons" (Dormand-Prince, NEURONS_METHODS: "dopri5",
-#   on the motoneurons, muscles and mechanics at each of these tolerances, CVODES BDF on the CPG and interneurons at
-#   stiff_part_tol = NEURONS_STIFF_TOL; docs/solver.md "Integrators"); default "1e-4 1e-5", 1e-7.
-#   NEURONS_STIFF_ATOL (default "mV = 1e-4"; empty: none): each compiled NEURONS_TOLS row once
-#   more with stiff_part_atol_by_unit = { NEURONS_STIFF_ATOL }.
-#   COMPILED_RHS=1 (default): the shipped row and the NEURONS_TOLS rows once more with
-#   compiled_rhs = true (model/compiled_rhs.hpp); their first run, with an empty cache, compiles,
-#   and its extra CPU time is the row's "compile s" (children's CPU counts), as Brian2's is.
+#   the ladders (GSL_METHODS: Brian2's adaptive GSL pairs, default "rkf45 rkck").
+#   The first phasmid row is the config as shipped: its [simulation] has no solver key, so the
+#   model kind's default integration runs (docs/solver.md "How each kind integrates"), with its
+#   compiled right-hand side; that row's first run, with an empty cache, compiles, and its extra
+#   CPU time is the row's "compile s" (children's CPU counts), as Brian2's is.
+#   PHASMID_TOLS (default none) and PHASMID_METHODS (default "dopri5 cvodes_bdf"): more rows with
+#   [simulation] rtol = atol = TOL and integrator = METHOD, which the kind maps onto its parts.
 #
 # Every row is checked against a tight-tolerance phasmid reference (rtol = atol = 1e-12):
 # the period and the mean extremal angles of every joint over [discard_ms, t_end_ms] =
@@ -26,8 +23,9 @@
 # output; start, config, model assembly and the features after it are outside), docs/hdf5.md.
 # "process s" is the CPU time of the whole process of one run (phasmid: start, config, solve,
 # HDF5 output; Brian2: the compiled binary).
-# Last, the head-to-head: HEAD_TO_HEAD rounds (default REPEATS), each runs phasmid's fastest
-# matched row and then every matched Brian2 row once, so that all meet the same load; the
+# Last, the head-to-head: HEAD_TO_HEAD rounds (default REPEATS), each runs phasmid's row as
+# shipped (the kind's default; H2H_ROW=fastest: the fastest matched phasmid row instead) and then
+# every matched Brian2 row once, so that all meet the same load; the
 # minima of these runs give the head-to-head ratio against the Brian2 row that is fastest in
 # them (the table's rows ran minutes apart, so its fastest Brian2 row is chance).
 # Needs Debian's Python with Brian2 (apt-get install -y python3-brian python3-numpy
@@ -45,17 +43,13 @@ case $MODEL in
   middle_leg_forward) JOINTS="thc ctr fti" ;;
   *) echo "bench_brian2: unknown model '$MODEL' (single_joint_fti or middle_leg_forward)" >&2; exit 1 ;;
 esac
-SHIPPED_TOL=$(sed -n 's/^rtol *= *//p' "$CONFIG")
-SHIPPED_TOL=${SHIPPED_TOL:-1e-8}  # the solver's default when the config sets none
-SHIPPED_METHOD=$(sed -n 's/^integrator *= *"\(.*\)"/\1/p' "$CONFIG")
-SHIPPED_METHOD=${SHIPPED_METHOD:-cvodes_bdf}
-PHASMID_METHODS=${PHASMID_METHODS:-"cvodes_bdf dopri5"}
-PHASMID_TOLS=${PHASMID_TOLS:-"1e-4 1e-5 1e-6 1e-7 1e-8 1e-9 1e-10"}
-NEURONS_TOLS=${NEURONS_TOLS-"1e-4 1e-5"}
-NEURONS_STIFF_TOL=${NEURONS_STIFF_TOL:-1e-7}
-NEURONS_METHODS=${NEURONS_METHODS:-"dopri5"}
-NEURONS_STIFF_ATOL=${NEURONS_STIFF_ATOL-mV = 1e-4}
-COMPILED_RHS=${COMPILED_RHS:-1}
+if grep -Eq '^(rtol|atol|integrator) *=|^\[simulation\.expert\]' "$CONFIG"; then
+  echo "bench_brian2: $CONFIG sets solver keys; the shipped row is meant to run the kind's default" >&2
+  exit 1
+fi
+PHASMID_METHODS=${PHASMID_METHODS:-"dopri5 cvodes_bdf"}
+PHASMID_TOLS=${PHASMID_TOLS:-}
+H2H_ROW=${H2H_ROW:-shipped}
 RK4_DTS=${RK4_DTS:-"0.05 0.025 0.01 0.005"}
 GSL_ERRORS=${GSL_ERRORS:-"1e-2 1e-3 1e-4 1e-5 1e-6"}
 GSL_METHODS=${GSL_METHODS:-"rkf45 rkck"}  # Brian2's adaptive GSL pairs (also rk8pd, rk2; bench/brian2)
@@ -88,21 +82,21 @@ phasmid_cpu() {
   echo "$(min_of $proc) $(min_of $solve)"
 }
 
-# One phasmid row: simulate REPEATS times with integrator METHOD at rtol = atol = TOL (and the
-# [simulation] lines EXTRA, \n-separated), JSON line with times and features.
+# One phasmid row: simulate REPEATS times with integrator METHOD at rtol = atol = TOL (TOL "-":
+# the config as shipped), JSON line with times and features. Every row has a compiled-rhs
+# cache of its own, so that its first run compiles (reported as "compile s").
 phasmid_row() {
-  local label=$1 tol=$2 method=${3:-cvodes_bdf} extra=${4:-}
+  local label=$1 tol=$2 method=${3:-cvodes_bdf}
   ROW=$((ROW + 1))
-  local h5=$TMP/phasmid_$ROW.h5 cfg=$TMP/phasmid_$ROW.toml cache=""
-  # The config's [simulation] tolerances and integrator replaced (or added: the leg config sets none).
-  grep -Ev "^([ra]tol|integrator|partitioned|stiff_part_tol) *=" "$CONFIG" |
-    sed -e "s/^\[simulation\]/[simulation]\nrtol = $tol\natol = $tol\nintegrator = \"$method\"${extra:+\\n$extra}/" > "$cfg"
-  local proc solve first="" _
-  if [[ $extra == *compiled_rhs* ]]; then  # a cache of the row's own: its first run compiles
-    cache=$TMP/rhs-cache-$ROW
-    export PHASMID_CACHE_DIR=$cache
-    read -r first _ <<< "$(REPEATS=1 phasmid_cpu "$cfg" "$h5")"
+  local h5=$TMP/phasmid_$ROW.h5 cfg=$TMP/phasmid_$ROW.toml cache=$TMP/rhs-cache-$ROW
+  if [ "$tol" = - ]; then
+    cp "$CONFIG" "$cfg"
+  else
+    sed -e "s/^\[simulation\]/[simulation]\nrtol = $tol\natol = $tol\nintegrator = \"$method\"/" "$CONFIG" > "$cfg"
   fi
+  local proc solve first="" _
+  export PHASMID_CACHE_DIR=$cache
+  read -r first _ <<< "$(REPEATS=1 phasmid_cpu "$cfg" "$h5")"
   read -r proc solve <<< "$(phasmid_cpu "$cfg" "$h5")"
   unset PHASMID_CACHE_DIR
   "$PHASMID" features "$h5" --json > "$TMP/features.json"
@@ -110,10 +104,10 @@ phasmid_row() {
 import json, sys
 label, tol, proc, solve, fj, first, cfg, cache = sys.argv[1:]
 f = {x["name"][len("middle."):]: x["value"] for x in json.load(open(fj)) if x["name"].startswith("middle.")}
-row = {"tool": "phasmid", "label": label, "tol": float(tol),
+row = {"tool": "phasmid", "label": label, "tol": None if tol == "-" else float(tol),
        "run_s": float(solve), "process_s": float(proc), "features": f, "config": cfg, "cache": cache}
 if first:
-    row["compile_s"] = float(first) - float(proc)
+    row["compile_s"] = max(0.0, float(first) - float(proc))
 print(json.dumps(row))
 EOF2
 }
@@ -164,35 +158,17 @@ head_to_head() {
   sort -t$'\t' -k2,2 -k1,1g "$TMP/h2h_brian2.txt" | awk -F'\t' '$2 != last {print; last = $2}'
 }
 
-echo "bench_brian2: reference (phasmid, rtol = atol = 1e-12) ..." >&2
+echo "bench_brian2: reference (phasmid, CVODES BDF on the whole system, rtol = atol = 1e-12) ..." >&2
 REPEATS_SAVED=$REPEATS; REPEATS=1
-phasmid_row "reference" 1e-12
+phasmid_row "reference" 1e-12 cvodes_bdf
 REPEATS=$REPEATS_SAVED
+echo "bench_brian2: phasmid as shipped (the kind's default) ..." >&2
+phasmid_row "phasmid as shipped (the kind's default integration)" -
 for method in $PHASMID_METHODS; do
   for tol in $PHASMID_TOLS; do
     echo "bench_brian2: phasmid $method rtol = atol = $tol ..." >&2
-    label="phasmid $method, rtol = atol = $tol"
-    [ "$tol" = "$SHIPPED_TOL" ] && [ "$method" = "$SHIPPED_METHOD" ] && label+=" (shipped)"
-    phasmid_row "$label" "$tol" "$method"
-    if [ "$COMPILED_RHS" = 1 ] && [ "$tol" = "$SHIPPED_TOL" ] && [ "$method" = "$SHIPPED_METHOD" ]; then
-      phasmid_row "${label/ (shipped)/}, compiled_rhs" "$tol" "$method" "compiled_rhs = true"
-    fi
+    phasmid_row "phasmid $method, rtol = atol = $tol" "$tol" "$method"
   done
-done
-for nm in $NEURONS_METHODS; do
-for tol in $NEURONS_TOLS; do
-  echo "bench_brian2: phasmid $nm partitioned = neurons, rtol = atol = $tol ..." >&2
-  label="phasmid $nm + cvodes_bdf $NEURONS_STIFF_TOL (partitioned = \"neurons\"), rtol = atol = $tol"
-  phasmid_row "$label" "$tol" "$nm" "partitioned = \"neurons\"\\nstiff_part_tol = $NEURONS_STIFF_TOL"
-  if [ "$COMPILED_RHS" = 1 ]; then
-    phasmid_row "$label, compiled_rhs" "$tol" "$nm" \
-      "partitioned = \"neurons\"\\nstiff_part_tol = $NEURONS_STIFF_TOL\\ncompiled_rhs = true"
-    if [ -n "$NEURONS_STIFF_ATOL" ]; then
-      phasmid_row "$label, compiled_rhs, network part { $NEURONS_STIFF_ATOL }" "$tol" "$nm" \
-        "partitioned = \"neurons\"\\nstiff_part_tol = $NEURONS_STIFF_TOL\\ncompiled_rhs = true\\nstiff_part_atol_by_unit = { $NEURONS_STIFF_ATOL }"
-    fi
-  fi
-done
 done
 for dt in $RK4_DTS; do
   echo "bench_brian2: Brian2 RK4 dt = $dt ms ..." >&2
@@ -206,7 +182,7 @@ for m in $GSL_METHODS; do
   done
 done
 
-$PY - "$ROWS" "$REPEATS" "$MODEL" "$JOINTS" "$TMP/fastest.txt" <<'EOF'
+$PY - "$ROWS" "$REPEATS" "$MODEL" "$JOINTS" "$TMP/fastest.txt" "$H2H_ROW" <<'EOF'
 import json, sys
 rows = [json.loads(l) for l in open(sys.argv[1])]
 open(sys.argv[5], "w").close()
@@ -239,15 +215,17 @@ for r in rows[1:]:
 def fastest(tool):
     c = [r for r in rows[1:] if r["tool"] == tool and r.get("ok")]
     return min(c, key=lambda r: r["run_s"]) if c else None
-shipped = next((r for r in rows if "(shipped)" in r["label"]), None)
+shipped = next((r for r in rows if r["label"].startswith("phasmid as shipped") and r.get("ok")), None)
 pm, bm = fastest("phasmid"), fastest("brian2")
 print()
 if shipped and bm:
     print(f"phasmid shipped / fastest matched Brian2 ({bm['label']}): {shipped['run_s'] / bm['run_s']:.2f}x the time")
 if pm and bm:
     print(f"fastest matched phasmid ({pm['label']}) / fastest matched Brian2: {pm['run_s'] / bm['run_s']:.2f}x the time")
+h2h = shipped if sys.argv[6] == "shipped" else pm
+if h2h and bm:
     with open(sys.argv[5], "w") as out:
-        out.write(f"{pm['config']} {pm['cache'] or '-'}\n")
+        out.write(f"{h2h['config']} {h2h['cache'] or '-'}\n")
         for r in rows[1:]:
             if r["tool"] == "brian2" and r.get("ok"):
                 out.write(f"{r['project']}\t{r['label']}\n")
@@ -258,11 +236,11 @@ if [ -s "$TMP/fastest.txt" ] && [ "$HEAD_TO_HEAD" -gt 0 ]; then
   read -r cfg cache < "$TMP/fastest.txt"
   [ "$cache" = - ] && cache=""
   tail -n +2 "$TMP/fastest.txt" > "$TMP/projects.txt"
-  echo "bench_brian2: head-to-head, $HEAD_TO_HEAD rounds of the fastest matched phasmid row and each matched Brian2 row ..." >&2
+  echo "bench_brian2: head-to-head, $HEAD_TO_HEAD rounds of phasmid's $H2H_ROW row and each matched Brian2 row ..." >&2
   head_to_head "$cfg" "$cache" "$TMP/projects.txt" > "$TMP/h2h.txt"
   p=$(head -1 "$TMP/h2h.txt")
   tail -n +2 "$TMP/h2h.txt" | sort -g > "$TMP/h2h_sorted.txt"
-  echo "head-to-head, $HEAD_TO_HEAD rounds, phasmid's fastest matched row then each matched Brian2 row, min of each:"
+  echo "head-to-head, $HEAD_TO_HEAD rounds, phasmid's $H2H_ROW row then each matched Brian2 row, min of each:"
   awk -F'\t' -v p="$p" '{ printf "  phasmid %.3f s, %s %.3f s: %.2fx the time\n", p, $2, $1, p / $1 }' "$TMP/h2h_sorted.txt"
   awk -F'\t' -v p="$p" 'NR == 1 { printf "head-to-head against the fastest matched Brian2 row (%s): %.2fx the time\n", $2, p / $1 }' "$TMP/h2h_sorted.txt"
 fi
