@@ -512,8 +512,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const OutputTimes
   const size_t ns = sens_params.size();
   if (ns && options_.output_sink) throw Error("internal: an output sink takes no sensitivities");
   check_atol_units(model_, options_);
-  const bool partition = options_.partitioning == Partitioning::On || options_.partitioning == Partitioning::Neurons ||
-                         (options_.partitioning == Partitioning::Auto && model_.partition_by_default());
+  const bool partition = options_.partitioning == Partitioning::On || options_.partitioning == Partitioning::Neurons;
   if (partition && ns == 0) {
     if (options_.partitioning == Partitioning::Neurons && options_.threads >= 2)
       throw Error(std::string("partitioning Neurons runs on one thread: ") + kNeuronsOnOneThread);

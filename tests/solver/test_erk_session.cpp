@@ -86,7 +86,7 @@ TEST(ErkSession, NamesTheIntegrators) {
     config::simulation_settings(cfg);
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("erk_dp5"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("\"dopri5\""), std::string::npos) << e.what();
   }
 }
 
