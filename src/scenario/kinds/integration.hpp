@@ -30,19 +30,22 @@ using Integration = std::function<solver::SolverOptions(const IntegrationRequest
 // test kinds: small, smooth systems for which BDF's long steps win.
 Integration whole_system_bdf(double tol = 1e-8);
 
+// The tolerances of a spiking network's default (docs/solver.md "How each kind integrates"):
+// rtol = atol of the explicit (spiking) parts; rtol = atol of the CVODES BDF network parts;
+// their potentials' atol (mV). A user's rtol scales the network parts' tolerance by
+// rtol / spiking_tol, a user's atol their potentials' atol by atol / spiking_tol: every part
+// tighter (or looser) by the same factor.
+struct SpikingTolerances {
+  double spiking_tol = 3e-5;
+  double network_tol = 1e-7;
+  double network_mv = 1e-4;
+};
+
 // The CPG-interneuron-motoneuron networks (single_joint, leg, three_legs, curve_walking).
 // Spiking motoneurons: each joint network's spiking cells apart from its stiff network
-// (Partitioning::Neurons), Dormand-Prince on the spiking parts at kSpikingPartTol, the network
-// parts on CVODES BDF at kNetworkPartTol with potentials at kNetworkPartMv, compiled right-hand
-// sides. Rate motoneurons: CVODES BDF per joint network at `rate_tol`.
-Integration network_integration(model::MotoneuronModel mn, double rate_tol);
-
-// The spiking networks' default tolerances (docs/solver.md): rtol = atol of the explicit
-// (spiking) parts; rtol = atol of the BDF network parts; their potentials' atol (mV).
-// A user's rtol scales the network parts' tolerance by rtol / kSpikingPartTol, a user's atol
-// their potentials' atol by atol / kSpikingPartTol: every part tighter by the same factor.
-inline constexpr double kSpikingPartTol = 3e-5;
-inline constexpr double kNetworkPartTol = 1e-7;
-inline constexpr double kNetworkPartMv = 1e-4;
+// (Partitioning::Neurons), Dormand-Prince on the spiking parts, the network parts on CVODES
+// BDF, at `spiking`; compiled right-hand sides. Rate motoneurons: CVODES BDF per joint network
+// at rtol = atol = `rate_tol`.
+Integration network_integration(model::MotoneuronModel mn, double rate_tol, SpikingTolerances spiking = {});
 
 }  // namespace phasmid::scenario::kinds
