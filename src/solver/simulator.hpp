@@ -38,7 +38,7 @@ inline bool is_explicit_rk(IntegratorKind k) { return k != IntegratorKind::Bdf &
 enum class VectorKernels { Phasmid, Sundials };
 // On: one integrator per joint network (model::PartitionGrain::Joints). Neurons: also each
 // network's spiking cells apart from the stiff network that drives them (PartitionGrain::Neurons).
-enum class Partitioning { On, Off, Neurons };
+enum class Partitioning { Auto, On, Off, Neurons };
 // Why Partitioning::Neurons refuses threads >= 2 (docs/solver.md "Integrators").
 inline constexpr const char* kNeuronsOnOneThread =
     "the windowed driver would extrapolate the presynaptic potentials over its window";
@@ -73,9 +73,10 @@ struct SolverOptions {
   int max_order = 0;                      // BDF/Adams order limit (0: CVODES default, 5 / 12)
   bool stability_limit_detection = false; // CVodeSetStabLimDet (BDF orders >= 3)
   // Plain runs (no sensitivities) of a model with several parts (joints): one integrator per
-  // part, each on its own step size (solver/partitioned_simulator.hpp). The model kind chooses
-  // (scenario/kinds/integration.hpp).
-  Partitioning partitioning = Partitioning::Off;
+  // part, each on its own step size (solver/partitioned_simulator.hpp). Auto: where the model
+  // says it pays at equal accuracy (OdeModel::partition_by_default: the rate-MN walking models;
+  // bench/results "Partitioned integration").
+  Partitioning partitioning = Partitioning::Auto;
   // Partitioning::Neurons with an explicit integrator: the parts the model marks stiff
   // (ModelPartition::stiff) run CVODES BDF at rtol = atol = stiff_part_tol; the rest run the
   // explicit method at rtol, atol. 1e-7: the study's loosest that keeps the single joint's

@@ -62,11 +62,12 @@ TEST(DefaultIntegration, SpikingNetworksRunTheirSpikingCellsApartCompiled) {
   EXPECT_EQ(o.partitioning, solver::Partitioning::Neurons);
   EXPECT_EQ(o.integrator, solver::IntegratorKind::Dopri5);
   EXPECT_TRUE(o.compiled_rhs);
-  EXPECT_EQ(o.rtol, scenario::kinds::SpikingTolerances{}.spiking_tol);
-  EXPECT_EQ(o.atol, scenario::kinds::SpikingTolerances{}.spiking_tol);
-  EXPECT_EQ(o.stiff_part_tol, scenario::kinds::SpikingTolerances{}.network_tol);
+  EXPECT_EQ(o.rtol, 3e-6);
+  EXPECT_EQ(o.atol, 3e-6);
+  EXPECT_NEAR(o.stiff_part_tol, 1e-8, 1e-20);
   ASSERT_EQ(o.stiff_part_atol_by_unit.size(), 1u);
-  EXPECT_EQ(o.stiff_part_atol_by_unit[0], (std::pair<std::string, double>("mV", scenario::kinds::SpikingTolerances{}.network_mv)));
+  EXPECT_EQ(o.stiff_part_atol_by_unit[0].first, "mV");
+  EXPECT_NEAR(o.stiff_part_atol_by_unit[0].second, 1e-5, 1e-17);
   EXPECT_EQ(o.threads, 1);
 }
 
@@ -95,7 +96,7 @@ TEST(DefaultIntegration, TheKindMapsAGivenToleranceOntoItsParts) {
       resolved(kSingleJoint + "[simulation]\n[simulation.expert]\nnetwork_tol = 3e-7\ncompiled_rhs = false\n");
   EXPECT_EQ(expert.stiff_part_tol, 3e-7);
   EXPECT_FALSE(expert.compiled_rhs);
-  EXPECT_EQ(expert.rtol, scenario::kinds::SpikingTolerances{}.spiking_tol);
+  EXPECT_EQ(expert.rtol, 3e-6);
 
   const solver::SolverOptions rate = resolved("[model]\ntype = \"three_legs\"\nmotoneuron = \"rate\"\n");
   EXPECT_EQ(rate.integrator, solver::IntegratorKind::Bdf);

@@ -11,7 +11,7 @@ ModelKind curve_walking_kind() {
           [](const ModelSection& s) -> std::unique_ptr<Scenario> {
             const model::MotoneuronModel mn = kinds::motoneuron_key(s);
             return std::make_unique<OdeScenario>(model::build_curve_walking_model(mn),
-                                                 kinds::network_integration(mn, 1e-8));
+                                                 kinds::network_integration(mn, 1e-8, 3e-7));
           }};
 }
 

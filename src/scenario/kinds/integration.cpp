@@ -35,7 +35,7 @@ void check_combination(const IntegrationRequest& r, const solver::SolverOptions&
                 solver::kNeuronsOnOneThread);
 }
 
-solver::SolverOptions spiking_network(const IntegrationRequest& r, const SpikingTolerances& k) {
+solver::SolverOptions spiking_network(const IntegrationRequest& r, double spiking_tol) {
   solver::SolverOptions o;
   apply_common(r, o);
   o.integrator = r.integrator.value_or(IntegratorKind::Dopri5);
@@ -48,13 +48,13 @@ solver::SolverOptions spiking_network(const IntegrationRequest& r, const Spiking
     // The spiking cells apart (one thread only); with threads one Dormand-Prince per joint
     // network, which the spiking cells' coupling would otherwise cost accuracy at 1e-6.
     o.partitioning = r.partitioning.value_or(o.threads >= 2 ? Partitioning::On : Partitioning::Neurons);
-    const double tol = o.partitioning == Partitioning::Neurons ? k.spiking_tol : 1e-6;
+    const double tol = o.partitioning == Partitioning::Neurons ? spiking_tol : 1e-6;
     o.rtol = r.rtol.value_or(tol);
     o.atol = r.atol.value_or(tol);
     if (o.partitioning == Partitioning::Neurons) {
-      o.stiff_part_tol = r.network_tol.value_or(k.network_tol * o.rtol / k.spiking_tol);
+      o.stiff_part_tol = r.network_tol.value_or(o.rtol * kNetworkPartRatio);
       o.stiff_part_atol_by_unit = r.network_atol_by_unit.value_or(
-          std::vector<std::pair<std::string, double>>{{"mV", k.network_mv * o.atol / k.spiking_tol}});
+          std::vector<std::pair<std::string, double>>{{"mV", o.atol * kNetworkMvRatio}});
     }
   }
   o.compiled_rhs = r.compiled_rhs.value_or(true);
@@ -96,9 +96,9 @@ Integration whole_system_bdf(double tol) {
   };
 }
 
-Integration network_integration(model::MotoneuronModel mn, double rate_tol, SpikingTolerances spiking) {
+Integration network_integration(model::MotoneuronModel mn, double rate_tol, double spiking_tol) {
   if (mn == model::MotoneuronModel::Spiking)
-    return [spiking](const IntegrationRequest& r) { return spiking_network(r, spiking); };
+    return [spiking_tol](const IntegrationRequest& r) { return spiking_network(r, spiking_tol); };
   return [rate_tol](const IntegrationRequest& r) { return rate_network(r, rate_tol); };
 }
 

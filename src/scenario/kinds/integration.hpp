@@ -30,22 +30,19 @@ using Integration = std::function<solver::SolverOptions(const IntegrationRequest
 // test kinds: small, smooth systems for which BDF's long steps win.
 Integration whole_system_bdf(double tol = 1e-8);
 
-// The tolerances of a spiking network's default (docs/solver.md "How each kind integrates"):
-// rtol = atol of the explicit (spiking) parts; rtol = atol of the CVODES BDF network parts;
-// their potentials' atol (mV). A user's rtol scales the network parts' tolerance by
-// rtol / spiking_tol, a user's atol their potentials' atol by atol / spiking_tol: every part
-// tighter (or looser) by the same factor.
-struct SpikingTolerances {
-  double spiking_tol = 3e-5;
-  double network_tol = 1e-7;
-  double network_mv = 1e-4;
-};
-
 // The CPG-interneuron-motoneuron networks (single_joint, leg, three_legs, curve_walking).
 // Spiking motoneurons: each joint network's spiking cells apart from its stiff network
-// (Partitioning::Neurons), Dormand-Prince on the spiking parts, the network parts on CVODES
-// BDF, at `spiking`; compiled right-hand sides. Rate motoneurons: CVODES BDF per joint network
-// at rtol = atol = `rate_tol`.
-Integration network_integration(model::MotoneuronModel mn, double rate_tol, SpikingTolerances spiking = {});
+// (Partitioning::Neurons), Dormand-Prince on the spiking parts at rtol = atol = `spiking_tol`,
+// the network parts on CVODES BDF at rtol = atol = spiking_tol * kNetworkPartRatio with
+// potentials at atol = spiking_tol * kNetworkMvRatio mV, compiled right-hand sides. A user's
+// rtol and atol take spiking_tol's place in these products: every part tighter or looser by
+// the same factor. Rate motoneurons: CVODES BDF per joint network at rtol = atol = `rate_tol`.
+Integration network_integration(model::MotoneuronModel mn, double rate_tol, double spiking_tol);
+
+// The ratios of the network parts' tolerances to the spiking parts' (1e-7 and 1e-4 mV at 3e-5):
+// the BDF parts, whose potentials pace the spiking cells, need far tighter tolerances than the
+// explicit parts, but not their potentials at the 1e-7 mV that rtol alone would give.
+inline constexpr double kNetworkPartRatio = 1e-7 / 3e-5;
+inline constexpr double kNetworkMvRatio = 1e-4 / 3e-5;
 
 }  // namespace phasmid::scenario::kinds
