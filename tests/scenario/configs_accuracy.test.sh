@@ -10,7 +10,8 @@
 # takes no [simulation] (Cruse 1980, the analytic test functions) integrate nothing and are
 # skipped.
 # Also: no config sets a solver key (anything in [simulation] but t_end_ms, output_dt_ms,
-# discard_ms, or [simulation.expert]) without a comment on the same or the previous line.
+# discard_ms, or [simulation.expert]) without a comment on the same or the previous line (a
+# comment before a block of solver keys covers the block).
 # Usage: configs_accuracy.test.sh PHASMID SOURCE_DIR [CONFIG_NAME ...]
 set -u
 PHASMID=$1
@@ -29,20 +30,25 @@ names=("$@")
 import re, sys
 bad = 0
 for path in sys.argv[1:]:
-    section, prev = None, ""
+    # covered: the previous line is a comment, or a solver key that a comment covers (one
+    # comment before rtol and atol covers both).
+    section, covered = None, False
     for no, line in enumerate(open(path), 1):
         s = line.strip()
+        if not s:
+            continue
         m = re.match(r"^\[([^\]]+)\]", s)
+        key_line = not m and section in ("simulation", "simulation.expert") and re.match(r"^[A-Za-z_\"]", s)
+        solver_key = False
         if m:
             section = m.group(1)
-        elif section in ("simulation", "simulation.expert") and re.match(r"^[A-Za-z_\"]", s):
+        elif key_line:
             key = re.split(r"\s*=", s)[0].strip('"')
             solver_key = section == "simulation.expert" or key not in ("t_end_ms", "output_dt_ms", "discard_ms")
-            if solver_key and "#" not in s and not prev.startswith("#"):
+            if solver_key and "#" not in s and not covered:
                 print(f"FAIL {path}:{no}: solver key '{key}' without a comment saying why")
                 bad = 1
-        if s:
-            prev = s
+        covered = s.startswith("#") or (solver_key and ("#" in s or covered))
 sys.exit(bad)
 PY
 
