@@ -28,7 +28,7 @@ ModelKind three_legs_kind() {
             try {
               // Rate motoneurons: BDF per joint needs 1e-7 (1e-6 misses the duration gate).
               return std::make_unique<OdeScenario>(model::build_three_leg_model(o),
-                                                   kinds::network_integration(o.motoneuron, 1e-7, 3e-7));
+                                                   kinds::network_integration(o.motoneuron, 1e-7, 2e-7));
             } catch (const Error& e) {
               throw Error(s.where("gait") + ": " + e.what());
             }
