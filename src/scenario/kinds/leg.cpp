@@ -21,7 +21,7 @@ ModelKind leg_kind() {
               o.hold_until(start);
             }
             return std::make_unique<OdeScenario>(model::build_leg_model(k.leg, o),
-                                                 kinds::network_integration(o.motoneuron, 1e-8, 3e-7));
+                                                 kinds::network_integration(o.motoneuron, 1e-8, 2e-7));
           }};
 }
 
