@@ -54,7 +54,8 @@ struct Simulation {
 using Options = std::map<std::string, double>;
 
 // [simulation] settings with the keyword overrides of simulate(): max_steps is the module's
-// own; the others go through the config's [simulation] checks (config::apply_simulation_table),
+// own; the others are read by the config's [simulation] code over the config's own request
+// (config::read_simulation_table) and resolved by the model kind, as `phasmid simulate` does,
 // with errors naming "simulate()" and the keyword.
 scenario::RunSettings settings_with(const PyScenario& s, const Options& o) {
   static const std::set<std::string> keys = {"t_end_ms", "output_dt_ms", "discard_ms", "rtol", "atol", "max_step_ms"};
@@ -70,7 +71,12 @@ scenario::RunSettings settings_with(const PyScenario& s, const Options& o) {
   config::Config origin;
   origin.path = "simulate()";
   scenario::RunSettings r = s.settings;
-  if (!table.empty()) r = config_stage([&] { return config::apply_simulation_table(origin, table, s.scenario.get(), r); });
+  if (!table.empty())
+    r = config_stage([&] {
+      config::SimulationRequest request = config::simulation_request(s.cfg, s.scenario.get());
+      request = config::read_simulation_table(origin, table, s.scenario.get(), request);
+      return config::resolve_simulation(request, s.scenario.get(), origin.path);
+    });
   if (max_steps) {
     if (!(*max_steps >= 1 && *max_steps <= 1e9) || *max_steps != std::floor(*max_steps))
       throw ConfigError("simulate(): 'max_steps' must be an integer in [1, 1e9] (solver steps per output interval)");

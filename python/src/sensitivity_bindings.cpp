@@ -38,13 +38,14 @@ struct SensitivityRequest {
 sensitivity::SensitivityJob make_job(const PyScenario& s, const model::OdeModel& m, const SensitivityRequest& r) {
   return config_stage([&] {
     sensitivity::SensitivityJob job;
+    const config::SimulationSettings settings = config::bdf_simulation_settings(s.cfg, s.scenario.get());
     if (s.cfg.table["sensitivity"].as_table()) {
-      job = config::sensitivity_job(s.cfg, m, s.settings);
+      job = config::sensitivity_job(s.cfg, m, settings);
     } else {
-      job.options.t_end_ms = s.settings.t_end_ms;
-      job.options.output_dt_ms = s.settings.output_dt_ms;
-      job.options.discard_ms = s.settings.discard_ms;
-      job.options.solver = s.settings.solver;
+      job.options.t_end_ms = settings.t_end_ms;
+      job.options.output_dt_ms = settings.output_dt_ms;
+      job.options.discard_ms = settings.discard_ms;
+      job.options.solver = settings.solver;
     }
     toml::table t;
     if (r.parameters) {

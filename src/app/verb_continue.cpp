@@ -54,7 +54,7 @@ int run_continue(const ContinueArgs& a) {
   const model::OdeModel* model = scenario->ode_model();
   if (!model)
     throw Error(cfg.path + ": model type " + scenario->kind() + " is not an ODE system; continuation needs one");
-  auto options = config::continuation_options(cfg, *model, config::simulation_settings(cfg, scenario.get()));
+  auto options = config::continuation_options(cfg, *model, config::bdf_simulation_settings(cfg, scenario.get()));
   // The branch so far goes to "<out>.partial" after every point, so that a run stopped after
   // hours keeps its points; the complete file replaces it at the end.
   const std::string partial = a.out + ".partial";

@@ -27,7 +27,7 @@ int run_sensitivity(const SensitivityArgs& a) {
   if (!model)
     throw Error(cfg.path + ": model type " + scenario->kind() +
                 " is not an ODE system; forward sensitivities need one (use sweep or fit with a derivative-free optimizer)");
-  sensitivity::SensitivityJob job = config::sensitivity_job(cfg, *model, config::simulation_settings(cfg, scenario.get()));
+  sensitivity::SensitivityJob job = config::sensitivity_job(cfg, *model, config::bdf_simulation_settings(cfg, scenario.get()));
   if (!a.method.empty()) job.options.method = sensitivity::parse_method(a.method);
   job.options.solver.progress = !a.quiet;
   job.options.solver.progress_label = "sensitivity";

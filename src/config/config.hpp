@@ -25,8 +25,14 @@ std::unique_ptr<scenario::Scenario> build_scenario(const Config& cfg, const std:
 // The same for kinds that are one ODE system, handing over the model itself (tests, benchmarks
 // and the analyses that drive the solver directly); an Error for other kinds.
 std::unique_ptr<model::OdeModel> build_model(const Config& cfg, const std::vector<std::string>& sets = {});
-// [simulation] (docs/config.md); an Error if the section is given for a kind it does not apply to.
+// [simulation] (docs/config.md) resolved by the scenario's kind (Scenario::integration; without
+// a scenario, one system on CVODES BDF); an Error if the section is given for a kind it does
+// not apply to, or names a setting the kind refuses.
 SimulationSettings simulation_settings(const Config& cfg, const scenario::Scenario* scenario = nullptr);
+// The same for analyses whose runs are CVODES BDF on the whole system (forward sensitivities,
+// continuation): the kind's setting for integrator = "cvodes_bdf" unless [simulation] names an
+// integrator, so that its tolerances are the ones the kind gives BDF (docs/solver.md).
+SimulationSettings bdf_simulation_settings(const Config& cfg, const scenario::Scenario* scenario);
 
 // Text recorded as the `config` attribute of output files: the config plus the overrides.
 std::string resolved_config_text(const Config& cfg, const std::vector<std::string>& sets);

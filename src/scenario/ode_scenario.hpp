@@ -6,17 +6,21 @@
 #include <memory>
 
 #include "model/ode_model.hpp"
+#include "scenario/kinds/integration.hpp"
 #include "scenario/scenario.hpp"
 
 namespace phasmid::scenario {
 
 class OdeScenario : public Scenario {
  public:
-  // `defaults`: the kind's settings where the config's [simulation] says nothing (the
-  // integrator and tolerances the method study chose: docs/performance.md).
-  explicit OdeScenario(std::unique_ptr<model::OdeModel> model, RunSettings defaults = {})
-      : model_(std::move(model)), defaults_(std::move(defaults)) {}
-  RunSettings default_settings() const override { return defaults_; }
+  // `integration`: how the kind integrates a request (Scenario::integration; the kinds'
+  // policies, scenario/kinds/integration.hpp); by default one system on CVODES BDF.
+  explicit OdeScenario(std::unique_ptr<model::OdeModel> model,
+                       kinds::Integration integration = kinds::whole_system_bdf())
+      : model_(std::move(model)), integration_(std::move(integration)) {}
+  solver::SolverOptions integration(const IntegrationRequest& request) const override {
+    return integration_(request);
+  }
 
   std::string kind() const override { return model_->kind(); }
   model::ParameterSet& parameters() override { return model_->parameters(); }
@@ -35,7 +39,7 @@ class OdeScenario : public Scenario {
 
  private:
   std::unique_ptr<model::OdeModel> model_;
-  RunSettings defaults_;
+  kinds::Integration integration_;
 };
 
 }  // namespace phasmid::scenario

@@ -14,6 +14,7 @@
 //  - ScenarioRun::write() writes /trajectory, /parameters and /features (and any group the
 //    kind adds, e.g. /events) in the layout of docs/hdf5.md; the caller writes the run info.
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,6 +35,22 @@ struct FitSpec;
 }  // namespace phasmid::fit
 
 namespace phasmid::scenario {
+
+// What a user asked of the integration: [simulation] rtol, atol, max_step_ms, integrator and
+// [simulation.expert] of a config, or the Python module's simulate() keywords (docs/config.md).
+// An empty optional is "not given": the model kind decides (Scenario::integration).
+struct IntegrationRequest {
+  std::optional<double> rtol, atol, max_step_ms;
+  std::optional<solver::IntegratorKind> integrator;  // empty: "auto"
+  // [simulation.expert]
+  std::optional<solver::Partitioning> partitioning;
+  std::optional<int> threads;
+  std::optional<double> window_ms;
+  std::optional<bool> compiled_rhs;
+  std::optional<solver::LinearSolverKind> linear_solver;
+  std::optional<double> network_tol;  // SolverOptions::stiff_part_tol
+  std::optional<std::vector<std::pair<std::string, double>>> atol_by_unit, network_atol_by_unit;
+};
 
 // How long to run and how to integrate ([simulation] of a config; docs/config.md).
 struct RunSettings {
@@ -66,8 +83,18 @@ class Scenario {
   virtual model::ParameterSet& parameters() = 0;
   const model::ParameterSet& parameters() const { return const_cast<Scenario*>(this)->parameters(); }
 
-  // Settings used where the config has no [simulation] section.
-  virtual RunSettings default_settings() const { return {}; }
+  // The kind's integration for what the user asked (docs/solver.md "How each kind
+  // integrates"): every SolverOptions field the run reads, resolved (parts, method and
+  // tolerances per part, compiled right-hand side). The one place a kind's defaults live;
+  // throws Error naming the option where the request combines settings the kind refuses.
+  // Kinds that take no [simulation] (takes_simulation_settings false) integrate nothing.
+  virtual solver::SolverOptions integration(const IntegrationRequest&) const { return {}; }
+  // Settings where the config has no [simulation] section: run times' defaults, integration({}).
+  RunSettings default_settings() const {
+    RunSettings s;
+    s.solver = integration({});
+    return s;
+  }
   // Whether [simulation] applies to this kind (false: the kind's own parameters set its run).
   virtual bool takes_simulation_settings() const { return true; }
 

@@ -253,8 +253,7 @@ SolveResult Simulator::run(const std::vector<double>& p_given, const OutputTimes
   if (ns && !options_.atol_by_unit.empty())
     throw Error("solver option 'atol_by_unit' applies to runs without sensitivities");
   check_atol_units(model_, options_);
-  const bool partition = options_.partitioning == Partitioning::On || options_.partitioning == Partitioning::Neurons ||
-                         (options_.partitioning == Partitioning::Auto && model_.partition_by_default());
+  const bool partition = options_.partitioning == Partitioning::On || options_.partitioning == Partitioning::Neurons;
   if (partition && ns == 0) {
     const model::ModelPartition parts = model_.partition(
         options_.partitioning == Partitioning::Neurons ? model::PartitionGrain::Neurons : model::PartitionGrain::Joints);

@@ -293,7 +293,7 @@ def test_simulate_refuses_what_the_config_refuses(key, value, says):
 def test_simulate_message_is_the_configs_own(tmp_path, binary):
     # The same key in [simulation] gives the CLI's message with file:line in place of "simulate()".
     bad = tmp_path / "bad.toml"
-    bad.write_text(open(config("single_joint_fti.toml")).read().replace("rtol = 1e-6", "rtol = -1.0"))
+    bad.write_text(open(config("single_joint_fti.toml")).read().replace("[simulation]\n", "[simulation]\nrtol = -1.0\n"))
     expected = cli_error("simulate", str(bad), "-o", str(tmp_path / "x.h5"))
     with pytest.raises(phasmid.ConfigError) as e:
         phasmid.load(config("single_joint_fti.toml")).simulate(rtol=-1)

@@ -31,7 +31,7 @@ std::string head(const std::string& gait) {
 }
 // One system for both runs (a plain run would otherwise be integrated by joint networks, a
 // triggered one never is), so that the events of the two runs agree.
-const char* kSimulation = "[simulation]\nrtol = 1e-6\natol = 1e-6\npartitioned = false\n";
+const char* kSimulation = "[simulation]\nrtol = 1e-6\natol = 1e-6\n[simulation.expert]\npartitioning = \"whole\"\n";
 
 struct LegsRun {
   std::unique_ptr<model::OdeModel> m;

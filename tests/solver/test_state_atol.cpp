@@ -34,10 +34,12 @@ solver::SolveResult run_leg(solver::Partitioning partitioning, const std::vector
 solver::SolveResult run_neurons_partition(const std::vector<std::pair<std::string, double>>& stiff_by_unit) {
   auto cfg = config::parse_config(
       "[model]\ntype = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\n"
-      "[simulation]\nintegrator = \"dopri5\"\nrtol = 1e-4\natol = 1e-4\npartitioned = \"neurons\"\n",
+      "[simulation]\nintegrator = \"dopri5\"\nrtol = 1e-4\natol = 1e-4\n"
+      "[simulation.expert]\npartitioning = \"neurons\"\nnetwork_tol = 1e-7\n",
       "j.toml");
+  auto scenario = config::build_scenario(cfg);
+  solver::SolverOptions o = config::simulation_settings(cfg, scenario.get()).solver;
   auto m = config::build_model(cfg);
-  solver::SolverOptions o = config::simulation_settings(cfg).solver;
   o.stiff_part_atol_by_unit = stiff_by_unit;
   return solver::Simulator(*m, o).run(m->parameters().values(), solver::output_grid(2000.0, 5.0));
 }
@@ -101,37 +103,43 @@ TEST(StateAtol, RefusedWithSensitivities) {
 
 TEST(StateAtol, ConfigKey) {
   const std::string head = "[model]\ntype = \"leg\"\nleg = \"middle\"\n[simulation]\n";
-  auto cfg = config::parse_config(head + "atol_by_unit = { mV = 1e-5, \"1\" = 1e-6 }\n", "a.toml");
-  const auto s = config::simulation_settings(cfg).solver;
+  const auto settings = [](const std::string& text, const char* name) {
+    const config::Config cfg = config::parse_config(text, name);
+    auto scenario = config::build_scenario(cfg);
+    return config::simulation_settings(cfg, scenario.get());
+  };
+  const std::string expert = "[simulation.expert]\npartitioning = \"joints\"\n";
+  const auto s = settings(head + expert + "atol_by_unit = { mV = 1e-5, \"1\" = 1e-6 }\n", "a.toml").solver;
   ASSERT_EQ(s.atol_by_unit.size(), 2u);
   double mv = 0, one = 0;
   for (const auto& [u, v] : s.atol_by_unit) (u == "mV" ? mv : one) = v;
   EXPECT_EQ(mv, 1e-5);
   EXPECT_EQ(one, 1e-6);
-  EXPECT_THROW(config::simulation_settings(config::parse_config(head + "atol_by_unit = { mV = 0 }\n", "b.toml")), Error);
-  EXPECT_THROW(config::simulation_settings(config::parse_config(head + "atol_by_unit = 1e-5\n", "c.toml")), Error);
-  EXPECT_THROW(config::simulation_settings(config::parse_config(head + "threads = 0\n", "d.toml")), Error);
-  const std::string neurons = "partitioned = \"neurons\"\nintegrator = \"dopri5\"\n";
-  const auto t = config::simulation_settings(
-      config::parse_config(head + neurons + "stiff_part_atol_by_unit = { mV = 1e-4 }\n", "e.toml"));
+  EXPECT_THROW(settings(head + expert + "atol_by_unit = { mV = 0 }\n", "b.toml"), Error);
+  EXPECT_THROW(settings(head + expert + "atol_by_unit = 1e-5\n", "c.toml"), Error);
+  EXPECT_THROW(settings(head + expert + "threads = 0\n", "d.toml"), Error);
+  const std::string neurons = "integrator = \"dopri5\"\n[simulation.expert]\npartitioning = \"neurons\"\n";
+  const auto t = settings(head + neurons + "network_atol_by_unit = { mV = 1e-4 }\n", "e.toml");
   ASSERT_EQ(t.solver.stiff_part_atol_by_unit.size(), 1u);
   EXPECT_EQ(t.solver.stiff_part_atol_by_unit[0], (std::pair<std::string, double>("mV", 1e-4)));
   EXPECT_TRUE(t.solver.atol_by_unit.empty());
   try {
-    config::simulation_settings(config::parse_config(head + neurons + "stiff_part_atol_by_unit = { mV = -1 }\n", "f.toml"));
+    settings(head + neurons + "network_atol_by_unit = { mV = -1 }\n", "f.toml");
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("f.toml:7"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("'stiff_part_atol_by_unit' tolerances must be > 0"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("f.toml:8"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'network_atol_by_unit' tolerances must be > 0"), std::string::npos) << e.what();
   }
-  // Without the neurons partition, or with BDF everywhere, it would change nothing: refused.
-  for (const std::string& other : {std::string("partitioned = true\nintegrator = \"dopri5\"\n"),
-                                   std::string("partitioned = \"neurons\"\nintegrator = \"cvodes_bdf\"\n")}) {
+  // Without the neurons partition, or with BDF everywhere, it would change nothing: refused,
+  // naming the file, the [simulation] table's line and the option.
+  for (const std::string& other : {std::string("integrator = \"dopri5\"\n[simulation.expert]\npartitioning = \"joints\"\n"),
+                                   std::string("integrator = \"cvodes_bdf\"\n[simulation.expert]\npartitioning = \"neurons\"\n")}) {
     try {
-      config::simulation_settings(config::parse_config(head + other + "stiff_part_atol_by_unit = { mV = 1e-4 }\n", "g.toml"));
+      settings(head + other + "network_atol_by_unit = { mV = 1e-4 }\n", "g.toml");
       ADD_FAILURE() << "no error for " << other;
     } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("g.toml:7: 'stiff_part_atol_by_unit' applies only with partitioned = \"neurons\""),
+      EXPECT_NE(std::string(e.what()).find("g.toml:4: [simulation]: expert.network_atol_by_unit applies only with "
+                                           "partitioning = \"neurons\""),
                 std::string::npos)
           << e.what();
     }

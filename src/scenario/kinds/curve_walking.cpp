@@ -9,7 +9,9 @@ namespace phasmid::scenario {
 ModelKind curve_walking_kind() {
   return {"curve_walking", "the left and right middle legs walking a curve (Section 2.5.3)", {"motoneuron"},
           [](const ModelSection& s) -> std::unique_ptr<Scenario> {
-            return std::make_unique<OdeScenario>(model::build_curve_walking_model(kinds::motoneuron_key(s)));
+            const model::MotoneuronModel mn = kinds::motoneuron_key(s);
+            return std::make_unique<OdeScenario>(model::build_curve_walking_model(mn),
+                                                 kinds::network_integration(mn, 1e-8, 3e-7));
           }};
 }
 

@@ -20,9 +20,8 @@ ModelKind leg_kind() {
               if (!(start >= 0)) throw Error(s.where("start_ms") + ": 'start_ms' must be a number >= 0 (ms)");
               o.hold_until(start);
             }
-            // Rate-motoneuron legs keep the solver's 1e-8 (not in the method study yet).
             return std::make_unique<OdeScenario>(model::build_leg_model(k.leg, o),
-                                                 kinds::network_defaults(o.motoneuron, 1e-8));
+                                                 kinds::network_integration(o.motoneuron, 1e-8, 2e-7));
           }};
 }
 

@@ -42,23 +42,4 @@ inline model::MotoneuronModel motoneuron_key(const ModelSection& s) {
   }
 }
 
-// The settings the method study chose for the network kinds (bench/results "Method
-// study": the cheapest within 0.01 ms and 0.01 deg of CVODES BDF at 1e-10). With spiking
-// motoneurons Dormand-Prince 5(4) per joint at rtol = atol = 1e-6 (joint, leg, three legs;
-// BDF needs 1e-8 or misses at 1e-7, at 1.4-1.8x the time), in phasmid's own stepper (dopri5:
-// ARKODE's steps at less work per step, bench/results "Dormand-Prince of our own"). With
-// rate motoneurons, whose interneuron potentials are too stiff for an explicit method (3.5-7x
-// slower), CVODES BDF at `rate_rtol`.
-inline RunSettings network_defaults(model::MotoneuronModel mn, double rate_rtol) {
-  RunSettings s;
-  if (mn == model::MotoneuronModel::Spiking) {
-    s.solver.integrator = solver::IntegratorKind::Dopri5;
-    s.solver.rtol = s.solver.atol = 1e-6;
-    s.solver.partitioning = solver::Partitioning::On;
-  } else {
-    s.solver.rtol = s.solver.atol = rate_rtol;
-  }
-  return s;
-}
-
 }  // namespace phasmid::scenario::kinds

@@ -12,7 +12,7 @@ ModelKind single_joint_kind() {
             kinds::JointKeys k = kinds::joint_keys(s);
             const model::MotoneuronModel mn = kinds::motoneuron_key(s);
             return std::make_unique<OdeScenario>(model::build_single_joint_model(k.leg, k.joint, k.thc_table, mn),
-                                                 kinds::network_defaults(mn, 1e-6));
+                                                 kinds::network_integration(mn, 1e-6, 3e-6));
           }};
 }
 

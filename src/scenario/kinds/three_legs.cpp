@@ -26,9 +26,9 @@ ModelKind three_legs_kind() {
               throw Error(s.where("coupling_gate") + ": " + e.what());
             }
             try {
-              // Rate motoneurons: BDF per joint needs 1e-7 (1e-6 misses by 0.02 ms).
+              // Rate motoneurons: BDF per joint needs 1e-7 (1e-6 misses the duration gate).
               return std::make_unique<OdeScenario>(model::build_three_leg_model(o),
-                                                   kinds::network_defaults(o.motoneuron, 1e-7));
+                                                   kinds::network_integration(o.motoneuron, 1e-7, 2e-7));
             } catch (const Error& e) {
               throw Error(s.where("gait") + ": " + e.what());
             }
