@@ -10,8 +10,9 @@
 # [model] motoneuron). Default: single_joint_fti:spiking single_joint_fti:rate
 # three_legs_tetrapod:rate. Environment: PHASMID (default build/phasmid), METHODS (default
 # "cvodes_bdf dopri5"), TOLS (default "1e-4 1e-5 1e-6 1e-7 1e-8"), REPEATS (default 1,
-# the minimum is kept), PARTITIONED (unset: the model's default; true / false), REF_TOL (1e-10),
-# SIM_EXTRA (more [simulation] lines for the methods' runs, not the reference: "threads = 2").
+# the minimum is kept), PARTITIONING (unset: the kind's choice; "whole", "joints", "neurons":
+# [simulation.expert] partitioning), REF_TOL (1e-10), EXPERT_EXTRA (more [simulation.expert]
+# lines for the methods' runs, not the reference: "threads = 2").
 # Time: CPU seconds (user + system) of `phasmid simulate` minus those of the same run for 1 ms
 # of model time (start-up, config, model assembly), so other load on the machine counts less.
 # Dimensionless features (fractions, ratios, lags) are reported ("max |d| 1"), not gated.
@@ -32,16 +33,21 @@ trap 'rm -rf "$TMP"' EXIT
 # integrator (and partitioning, motoneurons, horizon) replaced.
 variant() {
   local cfg=$ROOT/configs/$1.toml mn=$2 method=$3 tol=$4 tend=${5:-}
-  local sim="[simulation]\nrtol = $tol\natol = $tol\nintegrator = \"$method\""
-  [ -n "${PARTITIONED:-}" ] && sim="$sim\npartitioned = $PARTITIONED"
-  [ -n "${SIM_EXTRA:-}" ] && sim="$sim\n$SIM_EXTRA"
-  [ "$method" = reference ] && sim="[simulation]\nrtol = $REF_TOL\natol = $REF_TOL\nintegrator = \"cvodes_bdf\"\npartitioned = false"
+  local sim="[simulation]\nrtol = $tol\natol = $tol\nintegrator = \"$method\"" expert=""
+  [ -n "${PARTITIONING:-}" ] && expert="partitioning = \"$PARTITIONING\""
+  [ -n "${EXPERT_EXTRA:-}" ] && expert="${expert:+$expert\n}$EXPERT_EXTRA"
+  if [ "$method" = reference ]; then
+    sim="[simulation]\nrtol = $REF_TOL\natol = $REF_TOL\nintegrator = \"cvodes_bdf\""
+    expert="partitioning = \"whole\""
+  fi
   [ -n "$tend" ] && sim="$sim\nt_end_ms = $tend\ndiscard_ms = 0"
   local model="[model]"
   [ -n "$mn" ] && model="[model]\nmotoneuron = \"$mn\""
-  grep -Ev "^(rtol|atol|integrator|partitioned|motoneuron) *=" "$cfg" |
+  grep -Ev "^(rtol|atol|integrator|motoneuron) *=" "$cfg" |
     { [ -n "$tend" ] && grep -Ev "^(t_end_ms|discard_ms) *=" || cat; } |
     sed -e "s|^\[simulation\]|$sim|" -e "s|^\[model\]|$model|"
+  # The expert table last, so that no key of the config's own tables falls into it.
+  [ -z "$expert" ] || printf '\n[simulation.expert]\n%b\n' "$expert"
 }
 
 # cpu_run TOML OUT_JSON: minimum CPU seconds over REPEATS runs; features to OUT_JSON.
@@ -76,7 +82,7 @@ for case in "${CASES[@]}"; do
       fi
     done
   done
-  /usr/bin/python3 - "$case" "$TMP/ref.json" "$rows" "$startup" "$ref_s" "${PARTITIONED:-model default}" <<'PY'
+  /usr/bin/python3 - "$case" "$TMP/ref.json" "$rows" "$startup" "$ref_s" "${PARTITIONING:-the kind's choice}" <<'PY'
 import json, sys
 case, ref_path, rows_path, startup, ref_s, part = sys.argv[1:7]
 startup, ref_s = float(startup), float(ref_s)

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <string>
 
+#include "config/config.hpp"
+#include "config/sweep_inputs.hpp"
 #include "features/features.hpp"
 #include "fuzz_input.hpp"
 #include "io/h5_file.hpp"
@@ -22,7 +24,10 @@ inline void read_h5_as_phasmid_does(const std::string& path) {
     sweep::read_ranges_h5(in);
   });
   const std::string merged = scratch_path("merged.h5");
-  attempt([&] { sweep::merge_shards({path}, merged, "fuzz"); });
+  const auto inputs_of = [](const std::string& text, const std::string& origin, const std::vector<std::string>& sets) {
+    return config::sweep_inputs(config::parse_config(text, origin), sets);
+  };
+  attempt([&] { sweep::merge_shards({path}, merged, "fuzz", inputs_of); });
   std::remove(merged.c_str());
 }
 

@@ -149,6 +149,7 @@ SimulationSettings resolve_simulation(const SimulationRequest& r, const scenario
   check_run_times(s.t_end_ms, s.output_dt_ms, s.discard_ms, where);
   try {
     s.solver = scenario ? scenario->integration(r.integration) : scenario::kinds::whole_system_bdf()(r.integration);
+    s.solver.validate();  // the one check every caller shares (solver/solver_options.hpp)
   } catch (const Error& e) {
     throw Error(where + ": " + e.what());
   }

@@ -187,10 +187,6 @@ class NetworkModel : public OdeModelT<NetworkModel> {
   // potentials), which splits each joint's network into its CPG and interneurons (stiff, no
   // spikes) and its motoneurons, muscles and mechanics.
   ModelPartition partition(PartitionGrain grain) const override;
-  // Rate motoneurons only: the joints' own step sizes keep feature accuracy and save time. With
-  // spiking ones they lose accuracy in spike-driven features at the same rtol, and the tighter
-  // rtol that restores it costs the time saved (docs/performance.md).
-  bool partition_by_default() const override { return rate_mn_; }
   std::unique_ptr<OdeModelPart> make_part(const ModelPartition& partition, size_t k) const override;
   std::unique_ptr<OdeModelPart> make_whole() const override;
 

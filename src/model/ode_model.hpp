@@ -176,8 +176,6 @@ class OdeModel {
     (void)grain;
     return {};
   }
-  // Whether partitioned integration is the default for plain runs (it pays at equal accuracy).
-  virtual bool partition_by_default() const { return false; }
   virtual std::unique_ptr<OdeModelPart> make_part(const ModelPartition& partition, size_t k) const {
     (void)partition; (void)k;
     return nullptr;

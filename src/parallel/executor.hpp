@@ -60,7 +60,7 @@ std::unique_ptr<Executor> make_executor(int threads);
 inline constexpr int kMaxThreads = 256;
 int bounded_threads(int threads);  // 0 -> OpenMP's default; an Error below 0 or above kMaxThreads
 
-// One line per worker: "rank 1: 8 tasks, 61.2 s busy (50 %)", with the share of all busy time.
+// One line per worker: "rank R: N tasks, S s busy (P %)", with the share of all busy time.
 std::string format_work_summary(const std::vector<WorkerStats>& stats, const std::string& unit);
 
 // On the MPI master after an error outside run(): tells every worker that the current phase is

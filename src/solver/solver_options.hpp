@@ -29,7 +29,7 @@ enum class IntegratorKind { Bdf, Dopri5 };
 inline bool is_explicit_rk(IntegratorKind k) { return k == IntegratorKind::Dopri5; }
 // On: one integrator per joint network (model::PartitionGrain::Joints). Neurons: also each
 // network's spiking cells apart from the stiff network that drives them (PartitionGrain::Neurons).
-enum class Partitioning { Auto, On, Off, Neurons };
+enum class Partitioning { Off, On, Neurons };
 // Why Partitioning::Neurons refuses threads >= 2 (docs/solver.md "Integrators").
 inline constexpr const char* kNeuronsOnOneThread =
     "the windowed driver would extrapolate the presynaptic potentials over its window";
@@ -54,9 +54,9 @@ struct SolverOptions {
   // which is all the features need; saves CVodeGetSens and memory on a fine output grid).
   bool sensitivities_at_outputs = true;
   // Plain runs (no sensitivities) of a model with several parts (joints): one integrator per
-  // part, each on its own step size (solver/partitioned_simulator.hpp). Auto: where the model
-  // says it pays at equal accuracy (OdeModel::partition_by_default: the rate-MN walking models).
-  Partitioning partitioning = Partitioning::Auto;
+  // part, each on its own step size (solver/partitioned_simulator.hpp). Off: one system. The
+  // model kind chooses (scenario/kinds/integration.hpp); the simulator runs what it is given.
+  Partitioning partitioning = Partitioning::Off;
   // Partitioning::Neurons with an explicit integrator: the parts the model marks stiff
   // (ModelPartition::stiff) run CVODES BDF at rtol = atol = stiff_part_tol; the rest run the
   // explicit method at rtol, atol. 1e-7: the loosest that keeps the single joint's period

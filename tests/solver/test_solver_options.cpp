@@ -92,7 +92,7 @@ TEST(SolverOptions, CombinationsThatWouldChangeNothingOrCannotRunAreRefused) {
             "");
 
   const std::string applies = "solver option 'stiff_part_atol_by_unit' applies only with partitioning = neurons";
-  for (auto partitioning : {solver::Partitioning::Auto, solver::Partitioning::On, solver::Partitioning::Off})
+  for (auto partitioning : {solver::Partitioning::On, solver::Partitioning::Off})
     EXPECT_EQ(message([&](auto& o) {
                 o.integrator = solver::IntegratorKind::Dopri5;
                 o.partitioning = partitioning;
