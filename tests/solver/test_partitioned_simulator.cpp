@@ -295,6 +295,7 @@ TEST(PartitionedSimulator, StepLimitNamesThePart) {
     solver::SolverOptions o;
     o.rtol = o.atol = 1e-6;
     o.max_steps = 20;
+    o.partitioning = solver::Partitioning::On;
     o.threads = threads;
     try {
       solver::Simulator(*m, o).run(m->parameters().values(), solver::output_grid(500.0, 250.0));
