@@ -290,6 +290,13 @@
   function sensitivity(s) {
     var sec = section('sensitivity', 'Sensitivity',
       'Sensitivities of the features to the parameters. Relative sensitivities (∂ln feature / ∂ln parameter) are comparable across features and parameters; raw ones are in feature units per parameter unit.');
+    var mode = s.mode === 'steady_cycle'
+      ? 'Steady cycle: derivatives of the converged gait cycle and of the features on it (no averaging window)' +
+        (s.cycle && s.cycle.period_ms !== undefined ? '; period ' + fmt(s.cycle.period_ms) + ' ms' : '') +
+        (s.cycle && s.cycle.residual !== undefined ? ', Newton residual ' + fmt(s.cycle.residual) : '') +
+        (s.cycle && s.cycle.section ? ', section ' + s.cycle.section : '') + '.'
+      : 'Transient: derivatives of the features of the run\'s window.' + (s.mode_note ? ' ' + s.mode_note : '');
+    sec.appendChild(el('p', { cls: 'mode', text: 'Mode. ' + mode }));
     var params = s.parameters || [];
     var rel = {};
     (s.relative || []).forEach(function (r) { rel[r.name] = r; });

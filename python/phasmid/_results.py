@@ -348,7 +348,9 @@ class SensitivityResult(Result):
     ``trajectory`` is times x states x parameters (labels ``time``, ``state_names``,
     ``parameters``), None when trajectory=False. For a run made here they are views of the
     C++ report. ``features`` holds the nominal feature values, ``ranking[feature]`` the
-    parameters by |relative| sensitivity."""
+    parameters by |relative| sensitivity. ``mode`` says what was differentiated:
+    "steady_cycle" (the converged gait cycle; ``cycle_period_ms`` its period) or "transient"
+    (the run's window; ``mode_note`` says why when the automatic mode fell back to it)."""
 
     axes = {"absolute": ("feature", "parameter"), "relative": ("feature", "parameter"),
             "trajectory": ("time", "state", "parameter"), "states": ("time", "state")}
@@ -368,6 +370,7 @@ class SensitivityResult(Result):
             self.state_names, self.state_units = sens.state_names, sens.state_units
             self.ranking = dict(zip(self.feature_names, sens.ranking))
             self.method, self.summary = sens.method, sens.summary()
+            self.mode, self.mode_note, self.cycle_period_ms = sens.mode, sens.mode_note, sens.cycle_period_ms
         else:
             self._from_file(file)
 
@@ -390,6 +393,10 @@ class SensitivityResult(Result):
         self.state_units = d.get("/sensitivity/state_units", [])
         self.states = None
         self.method = (f.attrs.get("/sensitivity") or {}).get("method")
+        self.mode = (f.attrs.get("/sensitivity") or {}).get("mode")
+        self.mode_note = (f.attrs.get("/sensitivity") or {}).get("mode_note", "")
+        period = d.get("/sensitivity/cycle/period_ms")
+        self.cycle_period_ms = float(np.asarray(period).ravel()[0]) if period is not None else None
         self.summary = ""
         self.data, self.attrs = f.data, f.attrs
 

@@ -131,17 +131,19 @@ class Scenario:
         return SimulationResult(self._core.simulate(options), attrs=self._attrs(), inputs=self._core.inputs)
 
     def sensitivity(self, parameters=None, method=None, t_end_ms=None, output_dt_ms=None,
-                    discard_ms=None, trajectory=None):
-        """Forward sensitivities as `phasmid sensitivity` computes them: the config's
+                    discard_ms=None, trajectory=None, mode=None):
+        """Sensitivities as `phasmid sensitivity` computes them: the config's
         [sensitivity] section (or the [simulation] run without one), overridden by the
-        arguments (parameters: names; method: "forward" or "fd"; trajectory: keep the
-        times x states x parameters sensitivities). Returns a SensitivityResult."""
+        arguments (parameters: names; method: "forward" or "fd"; mode: "auto", "steady_cycle"
+        or "transient"; trajectory: keep the times x states x parameters sensitivities of a
+        transient run). Returns a SensitivityResult."""
         w = "sensitivity()"
         opt = lambda k, v, f: None if v is None else f(w, k, v)
         return SensitivityResult(_core.sensitivity(
             self._core, opt("parameters", parameters, _names), opt("method", method, _text),
             opt("t_end_ms", t_end_ms, _number), opt("output_dt_ms", output_dt_ms, _number),
-            opt("discard_ms", discard_ms, _number), opt("trajectory", trajectory, _flag)),
+            opt("discard_ms", discard_ms, _number), opt("trajectory", trajectory, _flag),
+            opt("mode", mode, _text)),
             attrs=self._attrs(), inputs=self._core.inputs)
 
     def _attrs(self):

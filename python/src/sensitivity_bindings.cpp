@@ -6,7 +6,7 @@
 #include "bindings.hpp"
 #include "config/sensitivity_section.hpp"
 #include "io/output_path.hpp"
-#include "sensitivity/job.hpp"
+#include "continuation/sensitivity_job.hpp"
 
 namespace phasmid::python {
 namespace {
@@ -30,6 +30,7 @@ struct SensitivityRequest {
   std::optional<std::string> method;
   std::optional<double> t_end_ms, output_dt_ms, discard_ms;
   std::optional<bool> trajectory;
+  std::optional<std::string> mode;
 };
 
 // The config's [sensitivity] job (or, without the section, the [simulation] run) with the
@@ -58,6 +59,7 @@ sensitivity::SensitivityJob make_job(const PyScenario& s, const model::OdeModel&
     if (r.output_dt_ms) t.insert("output_dt_ms", *r.output_dt_ms);
     if (r.discard_ms) t.insert("discard_ms", *r.discard_ms);
     if (r.trajectory) t.insert("trajectory", *r.trajectory);
+    if (r.mode) t.insert("mode", *r.mode);
     return config::parse_sensitivity_section(t, m, "sensitivity()", job);
   });
 }
@@ -115,6 +117,11 @@ void bind_labels(py::class_<Sensitivity>& c) {
       .def_property_readonly("state_units", [](const Sensitivity& s) { return s.outcome.report.state_units; })
       .def_property_readonly("ranking", [](const Sensitivity& s) { return s.outcome.report.ranking; })
       .def_property_readonly("method", [](const Sensitivity& s) { return std::string(sensitivity::method_name(s.outcome.report.method)); })
+      .def_property_readonly("mode", [](const Sensitivity& s) { return std::string(sensitivity::mode_name(s.outcome.mode)); })
+      .def_property_readonly("mode_note", [](const Sensitivity& s) { return s.outcome.note; })
+      .def_property_readonly("cycle_period_ms", [](const Sensitivity& s) {
+        return s.outcome.has_cycle ? py::object(py::float_(s.outcome.cycle.cycle.period_ms)) : py::object(py::none());
+      }, "period of the steady cycle (None in transient mode)")
       .def("feature_records", [](const Sensitivity& s) {
         py::list out;
         for (const auto& f : s.outcome.report.features) out.append(py::make_tuple(f.name, f.value, f.unit));
@@ -133,11 +140,11 @@ void bind_sensitivity(py::module_& m) {
   m.def("sensitivity", [](const std::shared_ptr<PyScenario>& s, std::optional<std::vector<std::string>> parameters,
                           std::optional<std::string> method, std::optional<double> t_end_ms,
                           std::optional<double> output_dt_ms, std::optional<double> discard_ms,
-                          std::optional<bool> trajectory) {
-    return run(s, {parameters, method, t_end_ms, output_dt_ms, discard_ms, trajectory});
+                          std::optional<bool> trajectory, std::optional<std::string> mode) {
+    return run(s, {parameters, method, t_end_ms, output_dt_ms, discard_ms, trajectory, mode});
   }, py::arg("scenario"), py::arg("parameters") = py::none(), py::arg("method") = py::none(),
         py::arg("t_end_ms") = py::none(), py::arg("output_dt_ms") = py::none(), py::arg("discard_ms") = py::none(),
-        py::arg("trajectory") = py::none());
+        py::arg("trajectory") = py::none(), py::arg("mode") = py::none());
 }
 
 }  // namespace phasmid::python

@@ -8,7 +8,7 @@
 #include "config/config.hpp"
 #include "io/output_path.hpp"
 #include "config/sensitivity_section.hpp"
-#include "sensitivity/job.hpp"
+#include "continuation/sensitivity_job.hpp"
 
 namespace phasmid::app {
 namespace {
@@ -32,7 +32,9 @@ int run_sensitivity(const SensitivityArgs& a) {
   job.options.solver.progress = !a.quiet;
   job.options.solver.progress_label = "sensitivity";
   std::vector<double> p = model->parameters().values();
-  auto outcome = sensitivity::run_sensitivity_job(*model, p, job);
+  auto outcome = sensitivity::run_sensitivity_job(*model, p, job, [&](const std::string& note) {
+    std::cerr << "phasmid sensitivity: " << note << "\n";
+  });
   sensitivity::write_sensitivity_file(a.out, *model, p, job, outcome,
                                       {config::resolved_config_text(cfg, a.sets), command_line()});
   if (a.json) print_features_json(outcome.report.features);

@@ -60,6 +60,20 @@ SensitivityJob parse_sensitivity_section(const toml::table& section, const model
       } catch (const Error& err) {
         throw Error(at + ": [sensitivity] " + err.what());
       }
+    } else if (key == "mode") {
+      try {
+        job.mode = parse_mode(text(node, key, origin));
+      } catch (const Error& err) {
+        throw Error(at + ": [sensitivity] " + err.what());
+      }
+    } else if (key == "cycle_tolerance") {
+      const double v = number(node, key, origin);
+      if (!(v > 0)) throw Error(at + ": [sensitivity] cycle_tolerance must be a positive number (state units)");
+      job.cycle.shooting.tolerance = v;
+    } else if (key == "cycle_periods") {
+      const double v = number(node, key, origin);
+      if (!(v >= 2)) throw Error(at + ": [sensitivity] cycle_periods must be >= 2 (periods the features are computed on)");
+      job.cycle.feature_cycles = v;
     } else if (key == "trajectory") {
       job.options.write_trajectory = boolean(node, key, origin);
     } else if (key == "fd_relative_step") {

@@ -4,11 +4,12 @@
 #include <string>
 
 #include "config/config.hpp"
-#include "sensitivity/job.hpp"
+#include "continuation/sensitivity_job.hpp"
 
 namespace phasmid::config {
 
-// Reads a [sensitivity] table (keys: parameters = [names], t_end_ms, output_dt_ms,
+// Reads a [sensitivity] table (keys: mode = "auto"|"steady_cycle"|"transient", cycle_tolerance,
+// cycle_periods, parameters = [names], t_end_ms, output_dt_ms,
 // discard_ms, method = "forward"|"fd", trajectory = bool, fd_relative_step,
 // staggered = bool, floquet = bool, transient_ms, max_period_ms, prc_state = "name",
 // prc_amplitude, prc_phases, prc_cycles). Unknown keys and wrong types are errors naming

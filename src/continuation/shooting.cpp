@@ -1,6 +1,7 @@
 #include "continuation/shooting.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 
 #include "common/error.hpp"
@@ -368,9 +369,13 @@ Cycle find_cycle(const model::OdeModel& model, const std::vector<double>& p, con
   ShootingOptions free = o;  // the member of a family the transient left: no held phase yet
   free.held_phases.clear();
   Cycle c = newton_fixed_parameter(model, p, {orbit.y0, orbit.period_ms, 0.0, t0}, free, report, shot);
-  if (!report.converged)
-    throw Error("Newton shooting did not converge from the cycle after the transient (residual " +
-                std::to_string(report.residual) + " after " + std::to_string(report.iterations) + " iterations)");
+  if (!report.converged) {
+    char res[32];
+    std::snprintf(res, sizeof res, "%.3g", report.residual);
+    throw Error("Newton shooting did not converge from the cycle after the transient (residual " + std::string(res) +
+                " in " + row_name(model, o, report.worst_row) + " after " + std::to_string(report.iterations) +
+                " iterations)");
+  }
   return c;
 }
 

@@ -63,6 +63,50 @@ FdColumn fd_column(const solver::Simulator& sim, const std::vector<double>& p, s
 
 }  // namespace
 
+std::vector<size_t> select_parameters(const model::OdeModel& model, const std::vector<std::string>& names) {
+  const auto& ps = model.parameters();
+  std::vector<size_t> idx;
+  // Command times set by [[triggers]] are functions of the other parameters (event time plus a
+  // delay), not free parameters: left out of "all", an error if named (docs/sensitivity.md).
+  std::vector<std::string> triggered_by(ps.size());
+  for (const auto& tr : model.triggers())
+    for (size_t q : tr.targets) triggered_by[q] = tr.event;
+  if (names.empty()) {
+    for (size_t k = 0; k < ps.size(); ++k)
+      if (triggered_by[k].empty()) idx.push_back(k);
+  } else {
+    for (auto& name : names) {
+      idx.push_back(ps.index(name));  // throws naming an unknown parameter
+      if (!triggered_by[idx.back()].empty())
+        throw Error("no sensitivity to " + name + ": it is set by the [[triggers]] event " + triggered_by[idx.back()] +
+                    " (give it a fixed value to differentiate by it)");
+    }
+  }
+  if (idx.empty()) throw Error("sensitivity analysis needs at least one parameter");
+  return idx;
+}
+
+void rank_parameters(SensitivityReport& rep) {
+  const size_t nf = rep.features.size(), np = rep.parameters.size();
+  rep.relative = Eigen::MatrixXd::Constant(nf, np, kNaN);
+  for (size_t f = 0; f < nf; ++f) {
+    const double F = rep.features[f].value;
+    for (size_t j = 0; j < np; ++j)
+      if (F != 0.0) rep.relative(f, j) = rep.parameter_values[j] / F * rep.absolute(f, j);
+    std::vector<size_t> order(np);
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+      double ra = std::abs(rep.relative(f, a)), rb = std::abs(rep.relative(f, b));
+      if (std::isnan(ra)) return false;
+      if (std::isnan(rb)) return true;
+      return ra > rb;
+    });
+    std::vector<std::string> names;
+    for (size_t j : order) names.push_back(rep.parameters[j]);
+    rep.ranking.push_back(std::move(names));
+  }
+}
+
 SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vector<double> p,
                                         const SensitivityOptions& opt) {
   auto wall0 = std::chrono::steady_clock::now();
@@ -73,24 +117,7 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
   rep.rtol = opt.solver.rtol;
   rep.atol = opt.solver.atol;
   rep.tolerance_factor = opt.method == Method::Forward ? opt.solver.sensitivity_tolerance_factor : 1.0;
-  std::vector<size_t> idx;
-  // Command times set by [[triggers]] are functions of the other parameters (event time plus a
-  // delay), not free parameters: left out of "all", an error if named (docs/sensitivity.md).
-  std::vector<std::string> triggered_by(ps.size());
-  for (const auto& tr : model.triggers())
-    for (size_t q : tr.targets) triggered_by[q] = tr.event;
-  if (opt.parameters.empty()) {
-    for (size_t k = 0; k < ps.size(); ++k)
-      if (triggered_by[k].empty()) idx.push_back(k);
-  } else {
-    for (auto& name : opt.parameters) {
-      idx.push_back(ps.index(name));  // throws naming an unknown parameter
-      if (!triggered_by[idx.back()].empty())
-        throw Error("no sensitivity to " + name + ": it is set by the [[triggers]] event " + triggered_by[idx.back()] +
-                    " (give it a fixed value to differentiate by it)");
-    }
-  }
-  if (idx.empty()) throw Error("sensitivity analysis needs at least one parameter");
+  const std::vector<size_t> idx = select_parameters(model, opt.parameters);
   const size_t np = idx.size(), n = model.num_states();
   for (size_t k : idx) {
     rep.parameters.push_back(ps.at(k).name);
@@ -157,23 +184,7 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
     }
   }
 
-  rep.relative = Eigen::MatrixXd::Constant(nf, np, kNaN);
-  for (size_t f = 0; f < nf; ++f) {
-    const double F = rep.features[f].value;
-    for (size_t j = 0; j < np; ++j)
-      if (F != 0.0) rep.relative(f, j) = rep.parameter_values[j] / F * rep.absolute(f, j);
-    std::vector<size_t> order(np);
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-      double ra = std::abs(rep.relative(f, a)), rb = std::abs(rep.relative(f, b));
-      if (std::isnan(ra)) return false;
-      if (std::isnan(rb)) return true;
-      return ra > rb;
-    });
-    std::vector<std::string> names;
-    for (size_t j : order) names.push_back(rep.parameters[j]);
-    rep.ranking.push_back(std::move(names));
-  }
+  rank_parameters(rep);
   rep.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return rep;
 }

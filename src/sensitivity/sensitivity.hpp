@@ -65,6 +65,15 @@ struct SensitivityReport {
   }
 };
 
+// The indices of the parameters named (empty: every parameter but the command times that
+// [[triggers]] set, which are functions of the others). Throws Error naming an unknown or a
+// triggered parameter, or when none is left.
+std::vector<size_t> select_parameters(const model::OdeModel& model, const std::vector<std::string>& names);
+
+// Fills `relative` (p/F dF/dp, NaN where F == 0) and `ranking` from `absolute`, the features
+// and the parameter values.
+void rank_parameters(SensitivityReport& report);
+
 SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vector<double> p,
                                         const SensitivityOptions& options);
 

@@ -1,26 +1,8 @@
 # Sourced by corpus.test.sh: valid inputs the cases start from, made once in $fixtures.
 # sim.toml: a short run of the FTi mechanics; sweep.toml: a 4-point sweep of it; run.h5, fit.h5
 # and sweep.h5 (with a journal of two points, sweep.h5.journal) written by phasmid itself.
-cat >"$fixtures/sim.toml" <<'TOML'
-[model]
-type = "mechanical_joint"
-leg = "middle"
-joint = "fti"
-start_phase = "flexion"
-[simulation]
-t_end_ms = 300
-output_dt_ms = 1.0
-rtol = 1e-6
-atol = 1e-6
-TOML
-cp "$fixtures/sim.toml" "$fixtures/sweep.toml"
-cat >>"$fixtures/sweep.toml" <<'TOML'
-[sweep]
-design = "grid"
-[[sweep.parameter]]
-name = "middle.fti.b_v"
-values = [10.0, 12.0, 14.0, 16.0]
-TOML
+cp "$SRC/tests/fixtures/fti_mechanics_short.toml" "$fixtures/sim.toml"
+cat "$fixtures/sim.toml" "$SRC/tests/fixtures/b_v_grid.toml" >"$fixtures/sweep.toml"
 cp "$SRC/datasets/synthetic/fti_kinematics_synthetic.csv" "$fixtures/kin.csv"
 cp "$SRC/datasets/synthetic/fti_kinematics_synthetic_anipose.csv" "$fixtures/anipose.csv"
 cp "$SRC/datasets/synthetic/fti_kinematics_params.tsv" "$fixtures/params.tsv"

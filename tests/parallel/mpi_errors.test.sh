@@ -12,23 +12,7 @@ source "$SRC/tests/parallel/mpi_env.sh"   # skips without MPI; runs in a fresh t
 # What mpirun (Open MPI 4.1) prints when a rank exits non-zero; everything else on stderr is phasmid's.
 openmpi_lines='^-+$|^Primary job +terminated normally, but [0-9]+ process(es)? returned$|^a non-zero exit code\. Per user-direction, the job has been aborted\.$|^mpirun detected that one or more processes exited with non-zero status, thus causing$|^the job to be terminated\. The first process to do so was:$|^$|^ +Process name: \[\[[0-9]+,[0-9]+\],[0-9]+\]$|^ +Exit code: +[0-9]+$'
 
-cat >sweep.toml <<'TOML'
-[model]
-type = "mechanical_joint"
-leg = "middle"
-joint = "fti"
-start_phase = "flexion"
-[simulation]
-t_end_ms = 300
-output_dt_ms = 1.0
-rtol = 1e-6
-atol = 1e-6
-[sweep]
-design = "grid"
-[[sweep.parameter]]
-name = "middle.fti.b_v"
-values = [10.0, 12.0, 14.0, 16.0]
-TOML
+cat "$SRC/tests/fixtures/fti_mechanics_short.toml" "$SRC/tests/fixtures/b_v_grid.toml" >sweep.toml
 sed 's/^N = 8192/N = 64/' "$SRC/configs/gsa_ishigami.toml" >gsa.toml
 sed -e "s#\.\./datasets/synthetic/#$SRC/datasets/synthetic/#g" "$SRC/configs/fit_fti_kinematic_synthetic.toml" >fit.toml
 base=$PWD

@@ -4,23 +4,14 @@
 # hold NaN: the report exits 0 and the page draws in headless Chromium with no script error
 # (body data-status="ok", data-errors empty; issue #42). Usage: PHASMID SOURCE_DIR
 set -u
-PHASMID=$(readlink -f "$1")
+PHASMID=$(readlink -f "$1"); SRC=$(readlink -f "$2")
 fail=0
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 [ -x /usr/bin/chromium ] || { echo "FAIL chromium is required (apt-get install -y chromium)"; exit 1; }
 /usr/bin/python3 -c 'import h5py' || { echo "FAIL h5py for Debian's python3 is required"; exit 1; }
 cd "$tmp" || exit 1
-cat >sim.toml <<'TOML'
-[model]
-type = "mechanical_joint"
-leg = "middle"
-joint = "fti"
-start_phase = "flexion"
-[simulation]
-t_end_ms = 300
-output_dt_ms = 1.0
-TOML
+cp "$SRC/tests/fixtures/fti_mechanics_short.toml" sim.toml
 cp sim.toml sweep.toml
 printf '[sweep]\ndesign = "grid"\n[[sweep.parameter]]\nname = "middle.fti.b_v"\nvalues = [10.0, 12.0, 14.0]\n' >>sweep.toml
 cp sweep.toml sweep2.toml  # two parameters: the features as colour maps over the plane

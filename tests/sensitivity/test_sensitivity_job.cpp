@@ -8,7 +8,7 @@
 
 #include "common/error.hpp"
 #include "model/mechanical_joint_model.hpp"
-#include "sensitivity/job.hpp"
+#include "continuation/sensitivity_job.hpp"
 #include "config/sensitivity_section.hpp"
 
 using namespace phasmid;

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "config/config.hpp"
-#include "sensitivity/job.hpp"
+#include "continuation/sensitivity_job.hpp"
 #include "config/sensitivity_section.hpp"
 #include "build_info.hpp"
 

@@ -1,4 +1,4 @@
-#include "sensitivity/job.hpp"
+#include "continuation/sensitivity_job.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -9,10 +9,48 @@
 
 namespace phasmid::sensitivity {
 
+Mode parse_mode(const std::string& s) {
+  if (s == "auto") return Mode::Auto;
+  if (s == "steady_cycle") return Mode::SteadyCycle;
+  if (s == "transient") return Mode::Transient;
+  throw Error("unknown sensitivity mode '" + s + "' (expected auto, steady_cycle or transient)");
+}
+
+const char* mode_name(Mode m) {
+  return m == Mode::Auto ? "auto" : m == Mode::SteadyCycle ? "steady_cycle" : "transient";
+}
+
+namespace {
+
+// The steady-cycle analysis with the job's section, transient and period window.
+continuation::CycleSensitivity cycle_sensitivities(const model::OdeModel& model, const std::vector<double>& p,
+                                                   const SensitivityJob& job) {
+  continuation::CycleSensitivityOptions co = job.cycle;
+  if (job.section_from_model) co.shooting.section = default_section(model);
+  co.shooting.transient_ms = job.floquet_options.transient_ms;
+  co.shooting.max_period_ms = job.floquet_options.max_period_ms;
+  return continuation::analyse_cycle_sensitivities(model, p, job.options, co);
+}
+
+}  // namespace
+
 SensitivityOutcome run_sensitivity_job(const model::OdeModel& model, const std::vector<double>& p,
-                                       const SensitivityJob& job) {
+                                       const SensitivityJob& job, const std::function<void(const std::string&)>& on_note) {
   SensitivityOutcome out;
-  out.report = analyse_sensitivities(model, p, job.options);
+  if (job.mode != Mode::Transient) {
+    try {
+      out.cycle = cycle_sensitivities(model, p, job);
+      out.report = std::move(out.cycle.report);
+      out.cycle.report = {};
+      out.has_cycle = true;
+      out.mode = Mode::SteadyCycle;
+    } catch (const Error& e) {
+      if (job.mode == Mode::SteadyCycle) throw;
+      out.note = std::string(e.what()) + "; differentiating the transient run instead";
+      if (on_note) on_note(out.note);
+    }
+  }
+  if (!out.has_cycle) out.report = analyse_sensitivities(model, p, job.options);
   FloquetOptions fo = job.floquet_options;
   fo.solver = job.options.solver;
   if ((job.floquet || job.prc) && job.section_from_model) fo.section = default_section(model);
@@ -43,6 +81,9 @@ void write_sensitivity_file(const std::string& path, const model::OdeModel& mode
   w.write("/parameters/values", p, "see /parameters/units");
   features::write_features_h5(w, outcome.report.features);
   write_sensitivity_h5(w, outcome.report);
+  w.set_attribute("/sensitivity", "mode", std::string(mode_name(outcome.mode)));
+  if (!outcome.note.empty()) w.set_attribute("/sensitivity", "mode_note", outcome.note);
+  if (outcome.has_cycle) continuation::write_cycle_h5(w, model, outcome.cycle);
   if (outcome.has_floquet) write_floquet_h5(w, model, outcome.floquet);
   if (outcome.has_prc) write_prc_h5(w, model, job.prc_options, outcome.prc);
   w.commit();
@@ -52,9 +93,14 @@ std::string format_summary(const SensitivityOutcome& o, size_t top) {
   const auto& r = o.report;
   std::ostringstream os;
   char buf[512];
-  std::snprintf(buf, sizeof buf, "sensitivity (%s) of %zu features to %zu parameters in %.2f s\n", method_name(r.method),
-                r.features.size(), r.parameters.size(), r.wall_seconds);
+  std::snprintf(buf, sizeof buf, "sensitivity (%s, %s) of %zu features to %zu parameters in %.2f s\n",
+                mode_name(o.mode), method_name(r.method), r.features.size(), r.parameters.size(), r.wall_seconds);
   os << buf;
+  if (o.has_cycle) {
+    std::snprintf(buf, sizeof buf, "  steady cycle: period %.6g ms, residual %.2g after %d Newton iterations, section %s\n",
+                  o.cycle.cycle.period_ms, o.cycle.residual, o.cycle.newton.iterations, o.cycle.section.c_str());
+    os << buf;
+  }
   for (size_t f = 0; f < r.features.size(); ++f) {
     std::snprintf(buf, sizeof buf, "  %-36s %12.6g %-4s", r.features[f].name.c_str(), r.features[f].value,
                   r.features[f].unit.c_str());

@@ -1,0 +1,278 @@
+#include "continuation/cycle_sensitivity.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "common/error.hpp"
+#include "features/features.hpp"
+#include "io/h5_file.hpp"
+
+namespace phasmid::continuation {
+namespace {
+
+// The cycle's model whose initial state follows the cycle's own dependence on the parameters:
+// y0(p) = y0 + dy0/dp (p - p0) over the differentiated parameters. The solver's initial
+// sensitivities (central differences of initial_state) then are dy0/dp exactly.
+class CycleStartModel : public CycleModel {
+ public:
+  CycleStartModel(const model::OdeModel& base, const Cycle& c, const std::vector<size_t>& idx,
+                  const std::vector<double>& p0, const Eigen::MatrixXd& dy0)
+      : CycleModel(base, c.y0, c.t0), y0_(c.y0), idx_(idx), p0_(p0), dy0_(dy0) {}
+  std::vector<double> initial_state(const std::vector<double>& p) const override {
+    std::vector<double> y = y0_;
+    for (size_t j = 0; j < idx_.size(); ++j) {
+      const double d = p[idx_[j]] - p0_[idx_[j]];
+      if (d != 0.0)
+        for (size_t i = 0; i < y.size(); ++i) y[i] += dy0_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) * d;
+    }
+    return y;
+  }
+
+ private:
+  std::vector<double> y0_;
+  std::vector<size_t> idx_;
+  std::vector<double> p0_;
+  Eigen::MatrixXd dy0_;
+};
+
+std::string section_name(const model::OdeModel& model, const solver::RootSpec& s) {
+  char level[32];
+  std::snprintf(level, sizeof level, "%g", s.level);
+  return model.states().at(s.state).name + (s.direction < 0 ? " falling through " : " rising through ") + level;
+}
+
+// The spread (max - min, ms) of the periods between the section crossings of the last `cycles`
+// cycles after the transient: how far from closing the orbit is, for the message of a cycle
+// that Newton could not close. NaN where the run has too few crossings.
+double period_spread(const model::OdeModel& model, const std::vector<double>& p, const ShootingOptions& o,
+                     int cycles, int* counted) {
+  solver::SolverOptions so = o.solver;
+  so.progress = false;
+  const solver::SolveResult r =
+      solver::Simulator(model, so).run(p, {0.0, o.transient_ms + cycles * o.max_period_ms}, {o.section});
+  std::vector<double> t;
+  for (const auto& e : r.events)
+    if (e.t >= o.transient_ms && (o.section.direction == 0 || e.direction == o.section.direction)) t.push_back(e.t);
+  *counted = static_cast<int>(t.size()) - 1;
+  if (t.size() < 3) return NAN;
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t k = 1; k < t.size(); ++k) lo = std::min(lo, t[k] - t[k - 1]), hi = std::max(hi, t[k] - t[k - 1]);
+  return hi - lo;
+}
+
+Cycle converge(const model::OdeModel& model, const std::vector<double>& p, const CycleSensitivityOptions& o,
+               NewtonReport& report, Shot& shot) {
+  try {
+    return find_cycle(model, p, o.shooting, report, &shot);
+  } catch (const Error& e) {
+    int counted = 0;
+    const double spread = period_spread(model, p, o.shooting, 10, &counted);
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "; cycle-to-cycle period spread %.3g ms over %d cycles after the transient", spread,
+                  counted);
+    throw Error("steady cycle: the orbit does not close on the section " + section_name(model, o.shooting.section) +
+                ": " + e.what() + buf + " (mode = \"transient\" differentiates the run instead)");
+  }
+}
+
+// dy(T)/dp_j at fixed y0 over one period of the cycle (states x parameters).
+Eigen::MatrixXd period_sensitivities(const model::OdeModel& model, const std::vector<double>& p, const Cycle& c,
+                                     const std::vector<size_t>& idx, solver::SolverOptions so) {
+  CycleModel cm(model, c.y0, c.t0);
+  so.progress = false;
+  so.sensitivities_at_outputs = true;
+  const solver::SolveResult r = solver::Simulator(cm, so).run(cm.extend(p), {0.0, c.period_ms}, {}, idx);
+  const size_t n = model.num_states(), k = r.t.size() - 1;
+  Eigen::MatrixXd s(n, idx.size());
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = 0; j < idx.size(); ++j) s(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = r.sens(k, i, j);
+  return s;
+}
+
+// The implicit-function step: dy0/dp (rows 0..n-1) and dT/dp (row n) from the cycle's
+// linearisation. A rank-deficient matrix (a family of cycles) has no unique answer.
+Eigen::MatrixXd implicit_derivatives(const model::OdeModel& model, const Shot& shot, size_t section,
+                                     const Eigen::MatrixXd& dyT_dp, const std::vector<std::complex<double>>& mu) {
+  const auto n = static_cast<Eigen::Index>(model.num_states());
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n + 1, n + 1);
+  A.topLeftCorner(n, n) = shot.monodromy - Eigen::MatrixXd::Identity(n, n);
+  A.topRightCorner(n, 1) = shot.f_end;
+  A(n, static_cast<Eigen::Index>(section)) = 1.0;
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(n + 1, dyT_dp.cols());
+  B.topRows(n) = -dyT_dp;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+  if (qr.rank() < n + 1) {
+    std::string near;
+    for (const auto& m : mu)
+      if (std::abs(m - 1.0) < 1e-3) near += " " + std::to_string(m.real());
+    throw Error("steady cycle: the cycle belongs to a family (multipliers at 1:" + near +
+                "), so its derivatives are not unique; differentiate the run with mode = \"transient\"");
+  }
+  return qr.solve(B);
+}
+
+// The features on the converged cycle start at its section: no transient to discard.
+features::FeatureOptions cycle_feature_options(const sensitivity::SensitivityOptions& opt) {
+  features::FeatureOptions fo = opt.feature_options;
+  fo.discard_ms = 0.0;
+  fo.root_offset = 0;
+  return fo;
+}
+
+// The features and their forward gradients on feature_cycles periods of the cycle, started
+// on the perturbed cycle (initial sensitivities dy0/dp).
+void cycle_feature_gradients(const model::OdeModel& model, const std::vector<double>& p,
+                             const sensitivity::SensitivityOptions& opt, const CycleSensitivityOptions& co,
+                             const std::vector<size_t>& idx, CycleSensitivity& out) {
+  CycleStartModel sm(model, out.cycle, idx, p, out.dstate);
+  const std::vector<double> pe = sm.extend(p);
+  const double T = out.cycle.period_ms;
+  const double dt = std::min(opt.output_dt_ms, T / 8.0);
+  solver::SolverOptions so = opt.solver;
+  so.sensitivities_at_outputs = false;  // the features need them at events only
+  const solver::SolveResult r = solver::Simulator(sm, so).run(
+      pe, solver::output_grid(co.feature_cycles * T, dt),
+      aligned_roots(features::feature_roots(sm, pe), co.shooting.section), idx);
+  const features::FeatureOptions fo = cycle_feature_options(opt);
+  auto& rep = out.report;
+  rep.stats = r.stats;
+  rep.features = features::compute_features(sm, r, fo);
+  rep.absolute = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(rep.features.size()),
+                                           static_cast<Eigen::Index>(idx.size()), NAN);
+  for (const auto& g : features::compute_feature_gradients(sm, r, fo))
+    rep.absolute.row(static_cast<Eigen::Index>(rep.feature_index(g.feature.name))) = g.gradient.transpose();
+}
+
+// Central differences of the converged cycle's features, Newton from the nominal cycle.
+void cycle_feature_differences(const model::OdeModel& model, const std::vector<double>& p,
+                               const sensitivity::SensitivityOptions& opt, const CycleSensitivityOptions& co,
+                               const std::vector<size_t>& idx, CycleSensitivity& out) {
+  auto& rep = out.report;
+  rep.features = cycle_features(model, p, out.cycle, co);
+  rep.absolute = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(rep.features.size()),
+                                           static_cast<Eigen::Index>(idx.size()), NAN);
+  auto value = [](const std::vector<features::Feature>& fs, const std::string& name) {
+    for (const auto& f : fs)
+      if (f.name == name) return f.value;
+    return static_cast<double>(NAN);
+  };
+  for (size_t j = 0; j < idx.size(); ++j) {
+    const double h = opt.fd_relative_step * std::max(std::abs(p[idx[j]]), opt.fd_min_scale);
+    std::vector<double> pp = p, pm = p;
+    pp[idx[j]] += h, pm[idx[j]] -= h;
+    std::vector<features::Feature> fp, fm;
+    try {
+      fp = cycle_features(model, pp, out.cycle, co), fm = cycle_features(model, pm, out.cycle, co);
+    } catch (const Error& e) {
+      throw Error("steady cycle: central difference by " + rep.parameters[j] + " (step " + std::to_string(h) +
+                  "): " + e.what());
+    }
+    rep.fd_runs += 2;
+    for (size_t f = 0; f < rep.features.size(); ++f)
+      rep.absolute(static_cast<Eigen::Index>(f), static_cast<Eigen::Index>(j)) =
+          (value(fp, rep.features[f].name) - value(fm, rep.features[f].name)) / (2 * h);
+  }
+}
+
+}  // namespace
+
+CycleSensitivityOptions default_cycle_options(const model::OdeModel& model) {
+  CycleSensitivityOptions o;
+  o.shooting.section = sensitivity::default_section(model);
+  return o;
+}
+
+std::vector<features::Feature> cycle_features(const model::OdeModel& model, const std::vector<double>& p,
+                                              const Cycle& guess, const CycleSensitivityOptions& o) {
+  // Newton from the guess (the nominal cycle, for a difference quotient); where it cannot
+  // close the cycle from there, the cycle the run reaches after the transient.
+  NewtonReport report;
+  Cycle c;
+  try {
+    c = newton_fixed_parameter(model, p, guess, o.shooting, report);
+  } catch (const Error&) {
+    report.converged = false;
+  }
+  if (!report.converged) c = find_cycle(model, p, o.shooting, report);
+  CycleModel cm(model, on_section(c.y0, o.shooting.section), c.t0);
+  const std::vector<double> pe = cm.extend(p);
+  solver::SolverOptions so = o.shooting.solver;
+  so.progress = false;
+  const solver::SolveResult r =
+      solver::Simulator(cm, so).run(pe, solver::output_grid(o.feature_cycles * c.period_ms, c.period_ms / 8.0),
+                                    aligned_roots(features::feature_roots(cm, pe), o.shooting.section));
+  return features::compute_features(cm, r, {});
+}
+
+CycleSensitivity analyse_cycle_sensitivities(const model::OdeModel& model, const std::vector<double>& p,
+                                             const sensitivity::SensitivityOptions& options,
+                                             CycleSensitivityOptions co) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  sensitivity::SensitivityOptions opt = options;
+  if (opt.solver.rtol > co.max_rtol) {
+    opt.solver.atol *= co.max_rtol / opt.solver.rtol;
+    opt.solver.rtol = co.max_rtol;
+  }
+  co.shooting.solver = opt.solver;
+  co.shooting.solver.progress = false;
+  const std::vector<size_t> idx = sensitivity::select_parameters(model, opt.parameters);
+  CycleSensitivity out;
+  auto& rep = out.report;
+  rep.method = opt.method;
+  rep.rtol = opt.solver.rtol;
+  rep.atol = opt.solver.atol;
+  rep.tolerance_factor = opt.method == sensitivity::Method::Forward ? opt.solver.sensitivity_tolerance_factor : 1.0;
+  for (size_t k : idx) {
+    const auto& par = model.parameters().at(k);
+    rep.parameters.push_back(par.name);
+    rep.parameter_units.push_back(par.unit);
+    rep.parameter_values.push_back(p[k]);
+    rep.parameter_method.push_back(sensitivity::method_name(opt.method));
+  }
+  Shot shot;
+  out.cycle = converge(model, p, co, out.newton, shot);
+  out.cycle.y0 = on_section(out.cycle.y0, co.shooting.section);
+  out.section = section_name(model, co.shooting.section);
+  out.residual = out.newton.residual;
+  out.multipliers = multipliers(shot.monodromy);
+  const size_t n = model.num_states();
+  const Eigen::MatrixXd x = implicit_derivatives(
+      model, shot, co.shooting.section.state, period_sensitivities(model, p, out.cycle, idx, opt.solver), out.multipliers);
+  out.dstate = x.topRows(static_cast<Eigen::Index>(n));
+  out.dstate.row(static_cast<Eigen::Index>(co.shooting.section.state)).setZero();  // held on the section, exactly
+  out.dperiod = x.row(static_cast<Eigen::Index>(n));
+  if (opt.method == sensitivity::Method::Forward) cycle_feature_gradients(model, p, opt, co, idx, out);
+  else cycle_feature_differences(model, p, opt, co, idx, out);
+  sensitivity::rank_parameters(rep);
+  rep.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return out;
+}
+
+void write_cycle_h5(io::H5Writer& out, const model::OdeModel& model, const CycleSensitivity& r) {
+  const std::string g = "/sensitivity/cycle";
+  out.ensure_group(g);
+  const size_t n = model.num_states(), np = static_cast<size_t>(r.dperiod.size());
+  out.write(g + "/period_ms", std::vector<double>{r.cycle.period_ms}, "ms");
+  out.write(g + "/dperiod", std::vector<double>(r.dperiod.data(), r.dperiod.data() + np),
+            "ms per parameter unit (parameters: /sensitivity/parameters)");
+  out.write(g + "/state_on_section", r.cycle.y0, "state units (/sensitivity/cycle/state_names)");
+  std::vector<std::string> names;
+  for (const auto& s : model.states()) names.push_back(s.name);
+  out.write(g + "/state_names", names);
+  std::vector<double> d(n * np);
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = 0; j < np; ++j) d[i * np + j] = r.dstate(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+  out.write(g + "/dstate", d, "state unit per parameter unit", {n, np});
+  std::vector<double> re, im, ab;
+  for (const auto& m : r.multipliers) re.push_back(m.real()), im.push_back(m.imag()), ab.push_back(std::abs(m));
+  out.write(g + "/multipliers_real", re, "1");
+  out.write(g + "/multipliers_imag", im, "1");
+  out.write(g + "/multipliers_abs", ab, "1");
+  out.set_attribute(g, "residual", r.residual);
+  out.set_attribute(g, "section", r.section);
+  out.set_attribute(g, "newton_iterations", static_cast<double>(r.newton.iterations));
+}
+
+}  // namespace phasmid::continuation
