@@ -1,7 +1,7 @@
 // phasmid demo [-o DIR]: the main job on embedded defaults. It runs the real verbs of this
 // same binary, one after another, so the demo exercises exactly what users run:
 //   simulate the single FTi joint network, fit the FTi mechanics to Section 3.1's targets,
-//   compute the network's sensitivities, run a small intersegmental-coupling sweep and a
+//   compute the sensitivities of the network's steady gait to all its parameters, run a small intersegmental-coupling sweep and a
 //   small global sensitivity analysis, and write one HTML report per HDF5 file.
 #include <sys/wait.h>
 #include <unistd.h>
@@ -32,8 +32,8 @@ const DemoStep kSteps[] = {
      "isolated FTi joint network (Fig. 2.12, Section 3.1.2): 9 s of walking"},
     {"fit", "configs/fit_fti_section31.toml", "fit_fti_section31.h5",
      "spring constants of the FTi joint fitted to Section 3.1's switch conditions (2.42)"},
-    {"sensitivity", "configs/sensitivity_single_joint.toml", "sensitivity_single_joint.h5",
-     "sensitivities of period, phase ratio and extremal angles of the FTi network"},
+    {"sensitivity", "configs/sensitivity_steady_gait.toml", "sensitivity_steady_gait.h5",
+     "sensitivities of the FTi network's steady gait (period, phase ratio, extremal angles) to all its parameters"},
     {"sweep", "configs/demo_coupling_sweep.toml", "demo_coupling_sweep.h5",
      "small sweep of the intersegmental coupling of the three-leg network"},
     {"gsa", "configs/gsa_single_joint.toml", "gsa_single_joint.h5",

@@ -43,37 +43,73 @@ std::string section_name(const model::OdeModel& model, const solver::RootSpec& s
   return model.states().at(s.state).name + (s.direction < 0 ? " falling through " : " rising through ") + level;
 }
 
-// The spread (max - min, ms) of the periods between the section crossings of the last `cycles`
-// cycles after the transient: how far from closing the orbit is, for the message of a cycle
-// that Newton could not close. NaN where the run has too few crossings.
-double period_spread(const model::OdeModel& model, const std::vector<double>& p, const ShootingOptions& o,
-                     int cycles, int* counted) {
+// How far the orbit is from closing, from a plain run of `cycles` cycles after the transient:
+// the spread (max - min) of the periods between its section crossings, and the return map's
+// residual max_i |y_i(last crossing) - y_i(crossing before)| with the state where it is largest.
+struct Closure {
+  int cycles = 0;
+  double period_spread_ms = NAN, residual = NAN;
+  size_t worst = 0;
+  std::string measure(const model::OdeModel& model) const {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "cycle-to-cycle period spread %.3g ms over %d cycles after the transient, return residual %.3g in ",
+                  period_spread_ms, cycles, residual);
+    return buf + model.states().at(worst).name;
+  }
+};
+
+Closure closure(const model::OdeModel& model, const std::vector<double>& p, const ShootingOptions& o, int cycles) {
   solver::SolverOptions so = o.solver;
   so.progress = false;
   const solver::SolveResult r =
       solver::Simulator(model, so).run(p, {0.0, o.transient_ms + cycles * o.max_period_ms}, {o.section});
-  std::vector<double> t;
+  std::vector<const solver::Event*> at;
   for (const auto& e : r.events)
-    if (e.t >= o.transient_ms && (o.section.direction == 0 || e.direction == o.section.direction)) t.push_back(e.t);
-  *counted = static_cast<int>(t.size()) - 1;
-  if (t.size() < 3) return NAN;
+    if (e.t >= o.transient_ms && (o.section.direction == 0 || e.direction == o.section.direction)) at.push_back(&e);
+  Closure c;
+  c.cycles = static_cast<int>(at.size()) - 1;
+  if (at.size() < 2) return c;
   double lo = INFINITY, hi = -INFINITY;
-  for (size_t k = 1; k < t.size(); ++k) lo = std::min(lo, t[k] - t[k - 1]), hi = std::max(hi, t[k] - t[k - 1]);
-  return hi - lo;
+  for (size_t k = 1; k < at.size(); ++k) lo = std::min(lo, at[k]->t - at[k - 1]->t), hi = std::max(hi, at[k]->t - at[k - 1]->t);
+  c.period_spread_ms = hi - lo;
+  const auto &a = at[at.size() - 2]->y, &b = at.back()->y;
+  c.residual = 0.0;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (std::abs(b[i] - a[i]) > c.residual) c.residual = std::abs(b[i] - a[i]), c.worst = i;
+  return c;
 }
 
+// A model with commands at fixed times after the transient (a forced joint's switch schedule)
+// is not autonomous: its cycle is pinned to the clock, and shooting from a section with a free
+// period does not describe it (continuation/shooting.hpp, the contract of a cycle run).
+void require_autonomous(const model::OdeModel& model, const std::vector<double>& p, const ShootingOptions& o) {
+  for (double b : model.breakpoints(p, o.transient_ms + 2 * o.max_period_ms))
+    if (b > o.transient_ms) {
+      char at[32];
+      std::snprintf(at, sizeof at, "%.6g", b);
+      throw Error("steady cycle: model " + model.kind() + " has commands at fixed times after the transient (at " + at +
+                  " ms): its cycle is forced by the clock, not a free periodic orbit (mode = \"transient\" "
+                  "differentiates the run instead)");
+    }
+}
+
+// The cycle by Newton shooting. An orbit whose return map misses by more than 100 times
+// Newton's tolerance after the transient (spikes that slip from cycle to cycle, no rhythm) is
+// refused without trying Newton; one that Newton cannot close, after trying.
 Cycle converge(const model::OdeModel& model, const std::vector<double>& p, const CycleSensitivityOptions& o,
                NewtonReport& report, Shot& shot) {
+  require_autonomous(model, p, o.shooting);
+  const std::string section = section_name(model, o.shooting.section);
+  const Closure c = closure(model, p, o.shooting, 5);
+  if (c.cycles < 2 || !(c.residual <= 100 * o.shooting.tolerance))
+    throw Error("steady cycle: the orbit does not close on the section " + section + ": " + c.measure(model) +
+                " (mode = \"transient\" differentiates the run instead)");
   try {
     return find_cycle(model, p, o.shooting, report, &shot);
   } catch (const Error& e) {
-    int counted = 0;
-    const double spread = period_spread(model, p, o.shooting, 10, &counted);
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "; cycle-to-cycle period spread %.3g ms over %d cycles after the transient", spread,
-                  counted);
-    throw Error("steady cycle: the orbit does not close on the section " + section_name(model, o.shooting.section) +
-                ": " + e.what() + buf + " (mode = \"transient\" differentiates the run instead)");
+    throw Error("steady cycle: the orbit does not close on the section " + section + ": " + e.what() + "; " +
+                c.measure(model) + " (mode = \"transient\" differentiates the run instead)");
   }
 }
 

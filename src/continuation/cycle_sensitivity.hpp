@@ -17,6 +17,8 @@
 // Cost: Newton's monodromy runs (n sensitivities over one period, usually once or twice), then
 // np sensitivities over 1 + feature_cycles periods, after one plain transient.
 //
+// A model whose commands at fixed times continue after the transient (a joint forced by a
+// switch schedule) has no free cycle: analyse_cycle_sensitivities refuses it in one line.
 // A cycle that does not close (no rhythm, spikes that slip from cycle to cycle, quasi-periodic
 // drift) makes Newton fail: analyse_cycle_sensitivities throws one line naming the section,
 // Newton's residual and the cycle-to-cycle spread of the period after the transient. A cycle of

@@ -187,3 +187,26 @@ TEST(CycleSensitivity, SpikingOrbitThatDoesNotCloseSaysSoNamingTheMeasure) {
   EXPECT_NE(note.find("does not close"), std::string::npos);
   EXPECT_EQ(out.note, note);
 }
+
+// A joint forced by a switch schedule has no free cycle: steady_cycle refuses it in one line,
+// auto differentiates its run.
+TEST(CycleSensitivity, ForcedJointIsRefusedAndAutoDifferentiatesTheRun) {
+  auto m = make("type = \"mechanical_joint\"\nleg = \"middle\"\njoint = \"fti\"\nstart_phase = \"flexion\"\n");
+  sensitivity::SensitivityJob job;
+  job.mode = sensitivity::Mode::SteadyCycle;
+  job.options = tight_options({"middle.fti.b_v"}, 1e-8);
+  job.options.t_end_ms = 3000;
+  job.options.discard_ms = 1000;
+  job.floquet_options.transient_ms = 1500;
+  job.floquet_options.max_period_ms = 1000;
+  try {
+    sensitivity::run_sensitivity_job(*m, m->parameters().values(), job);
+    FAIL() << "a forced joint's cycle was differentiated as a free one";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("forced by the clock"), std::string::npos) << e.what();
+  }
+  job.mode = sensitivity::Mode::Auto;
+  const auto out = sensitivity::run_sensitivity_job(*m, m->parameters().values(), job);
+  EXPECT_EQ(out.mode, sensitivity::Mode::Transient);
+  EXPECT_NE(out.note.find("forced by the clock"), std::string::npos);
+}

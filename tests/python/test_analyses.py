@@ -96,3 +96,26 @@ def test_simulation_report(tmp_path):
     html = (tmp_path / "r.html").read_text()
     assert "<html" in html.lower() and "middle" in html
 
+
+
+def test_sensitivity_steady_cycle_mode(tmp_path):
+    # The steady gait's sensitivities (docs/sensitivity.md, "Steady-cycle sensitivities") for two
+    # parameters: the mode and the cycle's period come through, equal the CLI's file bit for bit
+    # and read back; the period feature's derivative is the cycle's dT/dp.
+    names = ["middle.fti.cpg_ext.g_app", "middle.fti.cpg_flx.g_app"]
+    text = open(config("sensitivity_steady_gait.toml")).read() + 'parameters = ["%s", "%s"]\n' % tuple(names)
+    (tmp_path / "steady.toml").write_text(text)
+    cli("sensitivity", str(tmp_path / "steady.toml"), "-q", "-o", str(tmp_path / "ref.h5"))
+    s = phasmid.load(str(tmp_path / "steady.toml"))
+    sens = s.sensitivity()
+    assert sens.mode == "steady_cycle" and sens.mode_note == "" and sens.parameters == names
+    assert abs(sens.cycle_period_ms - sens.features["period_ms"]) < 1e-3
+    ref = h5_datasets(tmp_path / "ref.h5")
+    for i, f in enumerate(sens.feature_names):
+        assert_same_bits(sens.absolute[i], ref["/sensitivity/features/" + f], f)
+    assert np.allclose(sens.absolute[sens.feature_names.index("period_ms")], ref["/sensitivity/cycle/dperiod"], rtol=1e-4)
+    back = phasmid.read(tmp_path / "ref.h5")
+    assert back.mode == "steady_cycle" and back.cycle_period_ms == sens.cycle_period_ms
+    # The transient mode, asked for, is what runs.
+    t = s.sensitivity(parameters=names[:1], mode="transient", t_end_ms=1500, discard_ms=500)
+    assert t.mode == "transient" and t.cycle_period_ms is None
