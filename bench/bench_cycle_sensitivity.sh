@@ -2,7 +2,8 @@
 # What sensitivities over all of a model's parameters cost, as ratios to one plain 9 s run of
 # the same model in the same script (docs/sensitivity.md, "What a sensitivity run costs"):
 #   - steady cycle (mode = "steady_cycle": transient, Newton shooting, the implicit-function
-#     step, the features on the converged cycle), every parameter and every feature;
+#     step, the features on the converged cycle), every parameter and every feature, on one
+#     thread, and its wall time on one and two threads (chunks of parameters, -j);
 #   - transient (mode = "transient": the 9 s run with forward sensitivities of every parameter,
 #     features over [1.5 s, 9 s]), the same parameters.
 # Models: the single FTi joint with rate motoneurons; with FULL=1 also the middle leg and the
@@ -28,13 +29,14 @@ make_config() {
   echo "$out"
 }
 
-# CPU seconds (user + system) of the whole process, the least of REPEATS runs.
+# CPU seconds (user + system; WHAT=wall: wall seconds) of the whole process, the least of
+# REPEATS runs.
 cpu_min() {
   local best=""
   for _ in $(seq "$REPEATS"); do
     local t
-    t=$( { TIMEFORMAT='%U %S'; time "$@" > /dev/null; } 2>&1 | tail -1)
-    t=$(awk '{ printf "%.3f", $1 + $2 }' <<< "$t")
+    t=$( { TIMEFORMAT='%R %U %S'; time "$@" > /dev/null; } 2>&1 | tail -1)
+    t=$(awk -v w="${WHAT:-cpu}" '{ printf "%.3f", w == "wall" ? $1 : $2 + $3 }' <<< "$t")
     if [ -z "$best" ] || awk -v a="$t" -v b="$best" 'BEGIN { exit !(a < b) }'; then best=$t; fi
   done
   echo "$best"
@@ -47,16 +49,18 @@ row() {  # NAME SHIPPED-CONFIG
   ct=$(make_config "$name" "$model" transient)
   echo "bench_cycle_sensitivity: $name ..." >&2
   plain=$(cpu_min "$PHASMID" simulate "$cs" -o "$TMP/plain.h5" -q)
-  steady=$(cpu_min "$PHASMID" sensitivity "$cs" -o "$TMP/steady.h5" -q)
+  steady=$(cpu_min "$PHASMID" sensitivity "$cs" -o "$TMP/steady.h5" -q -j 1)
   transient=$(cpu_min "$PHASMID" sensitivity "$ct" -o "$TMP/transient.h5" -q)
+  wall1=$(WHAT=wall cpu_min "$PHASMID" sensitivity "$cs" -o "$TMP/steady.h5" -q -j 1)
+  wall2=$(WHAT=wall cpu_min "$PHASMID" sensitivity "$cs" -o "$TMP/steady.h5" -q -j 2)
   np=$(/usr/bin/python3 -c "import h5py,sys; print(len(h5py.File(sys.argv[1])['/sensitivity/parameters']))" "$TMP/steady.h5")
-  awk -v n="$name" -v np="$np" -v p="$plain" -v s="$steady" -v t="$transient" \
-    'BEGIN { printf "| %s | %d | %.3f | %.3f | %.1f | %.3f | %.1f |\n", n, np, p, s, s / p, t, t / p }'
+  awk -v n="$name" -v np="$np" -v p="$plain" -v s="$steady" -v t="$transient" -v w1="$wall1" -v w2="$wall2" \
+    'BEGIN { printf "| %s | %d | %.3f | %.3f | %.1f | %.3f | %.1f | %.2f / %.2f = %.2f |\n", n, np, p, s, s / p, t, t / p, w1, w2, w1 / w2 }'
 }
 
 echo "# bench_cycle_sensitivity: CPU seconds (least of $REPEATS), ratios to one plain 9 s run of the same model"
-echo "| model | parameters | plain 9 s run | steady cycle | ratio | transient 9 s | ratio |"
-echo "|---|---:|---:|---:|---:|---:|---:|"
+echo "| model | parameters | plain 9 s run | steady cycle, 1 thread | ratio | transient 9 s | ratio | steady cycle wall, 1 / 2 threads |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|"
 row "single joint (FTi), rate MN" single_joint_fti.toml
 if [ "${FULL:-0}" = 1 ]; then
   row "middle leg, rate MN" middle_leg_forward.toml

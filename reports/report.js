@@ -313,8 +313,12 @@
       var units = useRel ? '1' : raw[name].units;
       var order = params.map(function (p, i) { return i; }).filter(function (i) { return vals[i] !== null; });
       order.sort(function (a, b) { return Math.abs(vals[b]) - Math.abs(vals[a]); });
+      // Many parameters: the top TOP ranked, the rest summarised in the caption.
+      var TOP = 15, rest = order.slice(TOP);
+      order = order.slice(0, TOP);
+      var restText = rest.length ? ' ' + rest.length + ' more parameters, each with |' + (useRel ? 'relative ' : '') + 'sensitivity| ≤ ' + fmt(Math.abs(vals[rest[0]])) + ', are not drawn.' : '';
       var id = 'fig-sens-' + safeId(name);
-      var f = figure(grid, id, 'Parameters ranked by the magnitude of their ' + (useRel ? 'relative ' : '') + 'sensitivity of ' + name + '.', 70 + 20 * order.length);
+      var f = figure(grid, id, 'Parameters ranked by the magnitude of their ' + (useRel ? 'relative ' : '') + 'sensitivity of ' + name + '.' + restText, 70 + 20 * order.length);
       draw(id, f, {
         type: 'bar',
         data: { labels: order.map(function (i) { return params[i]; }), datasets: [{
@@ -348,22 +352,38 @@
         return r.values.map(function (v) { return v === null ? null : v / m; });
       });
     }
-    if (relNames.length && params.length) {
+    // Many parameters: one column per family (the name up to its last '.', e.g. "middle.fti.cpg_ext"),
+    // holding the family's entry of largest magnitude.
+    var columns = params, byFamily = params.length > 40;
+    if (byFamily) {
+      columns = [];
+      var fam = params.map(function (p) { var k = p.lastIndexOf('.'); return k > 0 ? p.slice(0, k) : p; });
+      fam.forEach(function (g) { if (columns.indexOf(g) < 0) columns.push(g); });
+      rowsFor = rowsFor.map(function (row) {
+        return columns.map(function (g) {
+          var best = null;
+          row.forEach(function (v, i) { if (fam[i] === g && v !== null && (best === null || Math.abs(v) > Math.abs(best))) best = v; });
+          return best;
+        });
+      });
+    }
+    if (relNames.length && columns.length) {
       var m = 0;
       rowsFor.forEach(function (row) { row.forEach(function (v) { if (v !== null) m = Math.max(m, Math.abs(v)); }); });
       m = m || 1;
       var cells = [];
       relNames.forEach(function (fn, r) {
-        params.forEach(function (p, c) {
+        columns.forEach(function (p, c) {
           var v = rowsFor[r][c];
           cells.push({ x: p, y: fn, v: v, color: v === null ? '#ddd' : ramp(RDBU, (v / m + 1) / 2) });
         });
       });
       var id = 'fig-sens-heatmap';
       var f = figure(sec, id, (normalised ? 'Sensitivities divided by the largest magnitude of each feature' : 'Relative sensitivities ∂ln feature / ∂ln parameter') +
-        ': red increases, blue decreases the feature.', 110 + 28 * relNames.length + 8 * Math.max.apply(null, params.map(function (p) { return p.length; })));
-      heatmap(id, f, normalised ? 'Normalised sensitivity: feature × parameter' : 'Relative sensitivity: feature × parameter',
-        params, relNames, cells, 'parameter', 'feature', normalised ? 'normalised sensitivity (1)' : 'relative sensitivity (1)');
+        (byFamily ? ', per parameter family (the name up to its last dot; the family member of largest magnitude)' : '') +
+        ': red increases, blue decreases the feature.', 110 + 28 * relNames.length + 8 * Math.max.apply(null, columns.map(function (p) { return p.length; })));
+      heatmap(id, f, (normalised ? 'Normalised sensitivity: feature × parameter' : 'Relative sensitivity: feature × parameter') + (byFamily ? ' family' : ''),
+        columns, relNames, cells, byFamily ? 'parameter family' : 'parameter', 'feature', normalised ? 'normalised sensitivity (1)' : 'relative sensitivity (1)');
       colorbar(f.fig, RDBU, -m, m, normalised ? 'normalised sensitivity (1)' : 'relative sensitivity ∂ln f / ∂ln p (1)');
     }
     if (s.floquet) {

@@ -1,4 +1,4 @@
-// phasmid sensitivity CONFIG [-o OUT.h5] [--method forward|fd] [--set NAME=VALUE ...] [-q] [--json]
+// phasmid sensitivity CONFIG [-o OUT.h5] [--method forward|fd] [--set NAME=VALUE ...] [-j N] [-q] [--json]
 #include <iostream>
 
 #include "app/options.hpp"
@@ -16,6 +16,7 @@ struct SensitivityArgs {
   std::string config, out = "sensitivity.h5", method;
   std::vector<std::string> sets;
   bool quiet = false, json = false;
+  int threads = 0;
 };
 
 int run_sensitivity(const SensitivityArgs& a) {
@@ -29,6 +30,7 @@ int run_sensitivity(const SensitivityArgs& a) {
                 " is not an ODE system; forward sensitivities need one (use sweep or fit with a derivative-free optimizer)");
   sensitivity::SensitivityJob job = config::sensitivity_job(cfg, *model, config::bdf_simulation_settings(cfg, scenario.get()));
   if (!a.method.empty()) job.options.method = sensitivity::parse_method(a.method);
+  job.cycle.threads = a.threads;
   job.options.solver.progress = !a.quiet;
   job.options.solver.progress_label = "sensitivity";
   std::vector<double> p = model->parameters().values();
@@ -50,6 +52,7 @@ const RegisterVerb reg{{"sensitivity", "Compute forward sensitivities of a scena
                           add_output(sub, a->out, "sensitivity.h5");
                           sub.add_option("--method", a->method, "forward (CVODES, default) or fd (central differences)");
                           add_sets(sub, a->sets);
+                          add_threads(sub, a->threads);
                           add_quiet(sub, a->quiet);
                           add_json(sub, a->json);
                           return std::function<int()>([a] { return run_sensitivity(*a); });

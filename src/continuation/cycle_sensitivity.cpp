@@ -8,6 +8,7 @@
 #include "common/error.hpp"
 #include "features/features.hpp"
 #include "io/h5_file.hpp"
+#include "parallel/executor.hpp"
 
 namespace phasmid::continuation {
 namespace {
@@ -127,18 +128,18 @@ Eigen::MatrixXd period_sensitivities(const model::OdeModel& model, const std::ve
   return s;
 }
 
-// The implicit-function step: dy0/dp (rows 0..n-1) and dT/dp (row n) from the cycle's
-// linearisation. A rank-deficient matrix (a family of cycles) has no unique answer.
-Eigen::MatrixXd implicit_derivatives(const model::OdeModel& model, const Shot& shot, size_t section,
-                                     const Eigen::MatrixXd& dyT_dp, const std::vector<std::complex<double>>& mu) {
+// The matrix of the implicit-function step, [Phi - I, f(y(T)); e_s^T, 0], factorised: its
+// solve of [-dy(T)/dp; 0] gives dy0/dp (rows 0..n-1) and dT/dp (row n). A rank-deficient matrix
+// (a family of cycles) has no unique answer.
+using Factorisation = Eigen::ColPivHouseholderQR<Eigen::MatrixXd>;
+Factorisation implicit_matrix(const model::OdeModel& model, const Shot& shot, size_t section,
+                              const std::vector<std::complex<double>>& mu) {
   const auto n = static_cast<Eigen::Index>(model.num_states());
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n + 1, n + 1);
   A.topLeftCorner(n, n) = shot.monodromy - Eigen::MatrixXd::Identity(n, n);
   A.topRightCorner(n, 1) = shot.f_end;
   A(n, static_cast<Eigen::Index>(section)) = 1.0;
-  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(n + 1, dyT_dp.cols());
-  B.topRows(n) = -dyT_dp;
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+  Factorisation qr(A);
   if (qr.rank() < n + 1) {
     std::string near;
     for (const auto& m : mu)
@@ -146,7 +147,7 @@ Eigen::MatrixXd implicit_derivatives(const model::OdeModel& model, const Shot& s
     throw Error("steady cycle: the cycle belongs to a family (multipliers at 1:" + near +
                 "), so its derivatives are not unique; differentiate the run with mode = \"transient\"");
   }
-  return qr.solve(B);
+  return qr;
 }
 
 // The features on the converged cycle start at its section: no transient to discard.
@@ -157,28 +158,84 @@ features::FeatureOptions cycle_feature_options(const sensitivity::SensitivityOpt
   return fo;
 }
 
-// The features and their forward gradients on feature_cycles periods of the cycle, started
-// on the perturbed cycle (initial sensitivities dy0/dp).
-void cycle_feature_gradients(const model::OdeModel& model, const std::vector<double>& p,
-                             const sensitivity::SensitivityOptions& opt, const CycleSensitivityOptions& co,
-                             const std::vector<size_t>& idx, CycleSensitivity& out) {
-  CycleStartModel sm(model, out.cycle, idx, p, out.dstate);
+// What one chunk of parameters gives (forward): dy0/dp and dT/dp (n + 1 rows), the features
+// on the cycle and their gradients (features x chunk).
+struct Chunk {
+  Eigen::MatrixXd x;
+  std::vector<features::Feature> features;
+  Eigen::MatrixXd gradient;
+  solver::SolverStats stats;
+};
+
+// The chunk's period sensitivities, its implicit-function columns, then the features and their
+// gradients on feature_cycles periods of the cycle, started on the perturbed cycle (initial
+// sensitivities dy0/dp).
+Chunk forward_chunk(const model::OdeModel& model, const std::vector<double>& p, const sensitivity::SensitivityOptions& opt,
+                    const CycleSensitivityOptions& co, const Cycle& cycle, const Factorisation& qr,
+                    const std::vector<size_t>& idx) {
+  const auto n = static_cast<Eigen::Index>(model.num_states());
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n + 1, static_cast<Eigen::Index>(idx.size()));
+  b.topRows(n) = -period_sensitivities(model, p, cycle, idx, opt.solver);
+  Chunk c;
+  c.x = qr.solve(b);
+  c.x.row(static_cast<Eigen::Index>(co.shooting.section.state)).setZero();  // held on the section, exactly
+  CycleStartModel sm(model, cycle, idx, p, c.x.topRows(n));
   const std::vector<double> pe = sm.extend(p);
-  const double T = out.cycle.period_ms;
-  const double dt = std::min(opt.output_dt_ms, T / 8.0);
+  const double T = cycle.period_ms;
   solver::SolverOptions so = opt.solver;
+  so.progress = false;
   so.sensitivities_at_outputs = false;  // the features need them at events only
   const solver::SolveResult r = solver::Simulator(sm, so).run(
-      pe, solver::output_grid(co.feature_cycles * T, dt),
+      pe, solver::output_grid(co.feature_cycles * T, std::min(opt.output_dt_ms, T / 8.0)),
       aligned_roots(features::feature_roots(sm, pe), co.shooting.section), idx);
   const features::FeatureOptions fo = cycle_feature_options(opt);
-  auto& rep = out.report;
-  rep.stats = r.stats;
-  rep.features = features::compute_features(sm, r, fo);
-  rep.absolute = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(rep.features.size()),
-                                           static_cast<Eigen::Index>(idx.size()), NAN);
+  c.stats = r.stats;
+  c.features = features::compute_features(sm, r, fo);
+  c.gradient = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(c.features.size()), static_cast<Eigen::Index>(idx.size()), NAN);
   for (const auto& g : features::compute_feature_gradients(sm, r, fo))
-    rep.absolute.row(static_cast<Eigen::Index>(rep.feature_index(g.feature.name))) = g.gradient.transpose();
+    for (size_t f = 0; f < c.features.size(); ++f)
+      if (c.features[f].name == g.feature.name) c.gradient.row(static_cast<Eigen::Index>(f)) = g.gradient.transpose();
+  return c;
+}
+
+// The forward analysis over chunks of co.chunk_parameters parameters, on co.threads threads.
+// The chunks are fixed by the parameter list alone, so the numbers do not depend on the
+// number of threads; the nominal features are the first chunk's.
+void forward_chunks(const model::OdeModel& model, const std::vector<double>& p, const sensitivity::SensitivityOptions& opt,
+                    const CycleSensitivityOptions& co, const Factorisation& qr, const std::vector<size_t>& idx,
+                    CycleSensitivity& out) {
+  const size_t per = std::max<size_t>(1, co.chunk_parameters), nc = (idx.size() + per - 1) / per;
+  std::vector<Chunk> chunks(nc);
+  std::vector<parallel::Task> tasks(nc);
+  for (size_t k = 0; k < nc; ++k) tasks[k].id = k;
+  // Threads share this process's memory: each task writes its own chunk, no bytes travel.
+  auto exec = parallel::make_openmp_executor(parallel::bounded_threads(co.threads));
+  size_t done = 0;
+  exec->run(tasks, [&](const parallel::Task& t, int) {
+    const std::vector<size_t> part(idx.begin() + static_cast<std::ptrdiff_t>(t.id * per),
+                                   idx.begin() + static_cast<std::ptrdiff_t>(std::min(idx.size(), (t.id + 1) * per)));
+    chunks[t.id] = forward_chunk(model, p, opt, co, out.cycle, qr, part);
+    return std::string();
+  }, [&](size_t, std::string) {
+    if (opt.solver.progress) std::fprintf(stderr, "\r%s: %zu of %zu parameters", opt.solver.progress_label.c_str(), std::min(idx.size(), ++done * per), idx.size());
+  }, [] { return true; });
+  if (opt.solver.progress) std::fprintf(stderr, "\n");
+  auto& rep = out.report;
+  rep.features = chunks[0].features;
+  rep.stats = chunks[0].stats;
+  const auto n = static_cast<Eigen::Index>(model.num_states());
+  out.dstate.resize(n, static_cast<Eigen::Index>(idx.size()));
+  out.dperiod.resize(static_cast<Eigen::Index>(idx.size()));
+  rep.absolute = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(rep.features.size()), static_cast<Eigen::Index>(idx.size()), NAN);
+  for (size_t k = 0; k < nc; ++k) {
+    const auto c0 = static_cast<Eigen::Index>(k * per), m = chunks[k].x.cols();
+    out.dstate.middleCols(c0, m) = chunks[k].x.topRows(n);
+    out.dperiod.segment(c0, m) = chunks[k].x.row(n);
+    for (size_t f = 0; f < chunks[k].features.size(); ++f)
+      for (size_t g = 0; g < rep.features.size(); ++g)
+        if (rep.features[g].name == chunks[k].features[f].name)
+          rep.absolute.block(static_cast<Eigen::Index>(g), c0, 1, m) = chunks[k].gradient.row(static_cast<Eigen::Index>(f));
+  }
 }
 
 // Central differences of the converged cycle's features, Newton from the nominal cycle.
@@ -273,14 +330,15 @@ CycleSensitivity analyse_cycle_sensitivities(const model::OdeModel& model, const
   out.section = section_name(model, co.shooting.section);
   out.residual = out.newton.residual;
   out.multipliers = multipliers(shot.monodromy);
-  const size_t n = model.num_states();
-  const Eigen::MatrixXd x = implicit_derivatives(
-      model, shot, co.shooting.section.state, period_sensitivities(model, p, out.cycle, idx, opt.solver), out.multipliers);
-  out.dstate = x.topRows(static_cast<Eigen::Index>(n));
-  out.dstate.row(static_cast<Eigen::Index>(co.shooting.section.state)).setZero();  // held on the section, exactly
-  out.dperiod = x.row(static_cast<Eigen::Index>(n));
-  if (opt.method == sensitivity::Method::Forward) cycle_feature_gradients(model, p, opt, co, idx, out);
-  else cycle_feature_differences(model, p, opt, co, idx, out);
+  const Factorisation qr = implicit_matrix(model, shot, co.shooting.section.state, out.multipliers);
+  if (opt.method == sensitivity::Method::Forward) {
+    forward_chunks(model, p, opt, co, qr, idx, out);
+  } else {
+    CycleSensitivityOptions one = co;  // dy0/dp and dT/dp by the implicit-function step still
+    one.chunk_parameters = idx.size();
+    forward_chunks(model, p, opt, one, qr, idx, out);
+    cycle_feature_differences(model, p, opt, co, idx, out);
+  }
   sensitivity::rank_parameters(rep);
   rep.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return out;

@@ -47,6 +47,11 @@ struct CycleSensitivityOptions {
   // the derivatives of event-defined features are only as accurate as the event times.
   double max_rtol = 1e-8;
   double feature_cycles = 3.0;  // periods of the converged cycle the features are computed on
+  // The forward runs differentiate this many parameters each (runs of chunks are independent;
+  // the numbers depend on the chunks, never on the threads), on `threads` threads (0: OpenMP's
+  // default).
+  size_t chunk_parameters = 16;
+  int threads = 0;
 };
 
 struct CycleSensitivity {

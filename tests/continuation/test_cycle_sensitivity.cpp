@@ -11,6 +11,7 @@
 #include <cmath>
 #include <memory>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <utility>
 #include <random>
@@ -209,4 +210,29 @@ TEST(CycleSensitivity, ForcedJointIsRefusedAndAutoDifferentiatesTheRun) {
   const auto out = sensitivity::run_sensitivity_job(*m, m->parameters().values(), job);
   EXPECT_EQ(out.mode, sensitivity::Mode::Transient);
   EXPECT_NE(out.note.find("forced by the clock"), std::string::npos);
+}
+
+// The forward runs go in chunks of parameters on threads: the numbers depend on the chunks
+// only, so one thread and two give the same bits.
+TEST(CycleSensitivity, ChunksOnTwoThreadsGiveTheSameBitsAsOnOne) {
+  auto m = make("type = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\nmotoneuron = \"rate\"\n");
+  CycleSensitivityOptions co = default_cycle_options(*m);
+  co.shooting.transient_ms = 3000;
+  co.shooting.max_period_ms = 1000;
+  co.chunk_parameters = 3;
+  const auto opt = tight_options({"middle.fti.cpg_ext.g_app", "middle.fti.cpg_flx.g_app", "middle.fti.b_v", "cpg.g_L",
+                                  "mn.rate.V_th", "middle.fti.l_F0", "muscle.b"},
+                                 1e-8);
+  co.threads = 1;
+  const CycleSensitivity one = analyse_cycle_sensitivities(*m, m->parameters().values(), opt, co);
+  co.threads = 2;
+  const CycleSensitivity two = analyse_cycle_sensitivities(*m, m->parameters().values(), opt, co);
+  ASSERT_EQ(one.report.absolute.rows(), two.report.absolute.rows());
+  for (Eigen::Index f = 0; f < one.report.absolute.rows(); ++f)
+    for (Eigen::Index j = 0; j < one.report.absolute.cols(); ++j) {
+      const double a = one.report.absolute(f, j), b = two.report.absolute(f, j);
+      EXPECT_TRUE(std::memcmp(&a, &b, sizeof a) == 0) << one.report.features[f].name << " by " << opt.parameters[j];
+    }
+  EXPECT_TRUE(one.dstate == two.dstate);
+  EXPECT_TRUE(one.dperiod == two.dperiod);
 }
