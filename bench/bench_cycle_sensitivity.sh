@@ -7,7 +7,8 @@
 #   - transient (mode = "transient": the 9 s run with forward sensitivities of every parameter,
 #     features over [1.5 s, 9 s]), the same parameters.
 # Models: the single FTi joint with rate motoneurons; with FULL=1 also the middle leg and the
-# three legs (tripod) with rate motoneurons, whose all-parameter runs take minutes.
+# three legs (tripod) with rate motoneurons, whose all-parameter runs take minutes; with
+# SPIKING=1 the spiking single joint's transient mode on one and two threads.
 #
 #   bash bench/bench_cycle_sensitivity.sh [REPEATS]     (default 3; PHASMID=path, default build/phasmid)
 set -euo pipefail
@@ -65,4 +66,14 @@ row "single joint (FTi), rate MN" single_joint_fti.toml
 if [ "${FULL:-0}" = 1 ]; then
   row "middle leg, rate MN" middle_leg_forward.toml
   row "three legs (tripod), rate MN" three_legs_tripod.toml
+fi
+# The spiking single joint, whose orbit does not close: the transient mode over all its
+# parameters, wall seconds on one and two threads (chunks of parameters, -j).
+if [ "${SPIKING:-0}" = 1 ]; then
+  sed -e '/^motoneuron/d' -e 's/^mode = .*/mode = "transient"/' "$TMP/single joint (FTi), rate MN_transient.toml" > "$TMP/spiking.toml"
+  echo "bench_cycle_sensitivity: spiking single joint, transient ..." >&2
+  w1=$(WHAT=wall cpu_min "$PHASMID" sensitivity "$TMP/spiking.toml" -o "$TMP/s.h5" -q -j 1)
+  w2=$(WHAT=wall cpu_min "$PHASMID" sensitivity "$TMP/spiking.toml" -o "$TMP/s.h5" -q -j 2)
+  echo
+  echo "spiking single joint, transient mode, all parameters: wall $w1 s on 1 thread, $w2 s on 2 ($(awk -v a="$w1" -v b="$w2" 'BEGIN { printf "%.2f", a / b }')x)"
 fi

@@ -30,7 +30,7 @@ int run_sensitivity(const SensitivityArgs& a) {
                 " is not an ODE system; forward sensitivities need one (use sweep or fit with a derivative-free optimizer)");
   sensitivity::SensitivityJob job = config::sensitivity_job(cfg, *model, config::bdf_simulation_settings(cfg, scenario.get()));
   if (!a.method.empty()) job.options.method = sensitivity::parse_method(a.method);
-  job.cycle.threads = a.threads;
+  job.options.threads = a.threads;
   job.options.solver.progress = !a.quiet;
   job.options.solver.progress_label = "sensitivity";
   std::vector<double> p = model->parameters().values();

@@ -89,7 +89,7 @@ void require_autonomous(const model::OdeModel& model, const std::vector<double>&
     if (b > o.transient_ms) {
       char at[32];
       std::snprintf(at, sizeof at, "%.6g", b);
-      throw Error("steady cycle: model " + model.kind() + " has commands at fixed times after the transient (at " + at +
+      throw NoSteadyCycle("steady cycle: model " + model.kind() + " has commands at fixed times after the transient (at " + at +
                   " ms): its cycle is forced by the clock, not a free periodic orbit (mode = \"transient\" "
                   "differentiates the run instead)");
     }
@@ -104,12 +104,12 @@ Cycle converge(const model::OdeModel& model, const std::vector<double>& p, const
   const std::string section = section_name(model, o.shooting.section);
   const Closure c = closure(model, p, o.shooting, 5);
   if (c.cycles < 2 || !(c.residual <= 100 * o.shooting.tolerance))
-    throw Error("steady cycle: the orbit does not close on the section " + section + ": " + c.measure(model) +
+    throw NoSteadyCycle("steady cycle: the orbit does not close on the section " + section + ": " + c.measure(model) +
                 " (mode = \"transient\" differentiates the run instead)");
   try {
     return find_cycle(model, p, o.shooting, report, &shot);
   } catch (const Error& e) {
-    throw Error("steady cycle: the orbit does not close on the section " + section + ": " + e.what() + "; " +
+    throw NoSteadyCycle("steady cycle: the orbit does not close on the section " + section + ": " + e.what() + "; " +
                 c.measure(model) + " (mode = \"transient\" differentiates the run instead)");
   }
 }
@@ -144,7 +144,7 @@ Factorisation implicit_matrix(const model::OdeModel& model, const Shot& shot, si
     std::string near;
     for (const auto& m : mu)
       if (std::abs(m - 1.0) < 1e-3) near += " " + std::to_string(m.real());
-    throw Error("steady cycle: the cycle belongs to a family (multipliers at 1:" + near +
+    throw NoSteadyCycle("steady cycle: the cycle belongs to a family (multipliers at 1:" + near +
                 "), so its derivatives are not unique; differentiate the run with mode = \"transient\"");
   }
   return qr;
@@ -198,18 +198,18 @@ Chunk forward_chunk(const model::OdeModel& model, const std::vector<double>& p, 
   return c;
 }
 
-// The forward analysis over chunks of co.chunk_parameters parameters, on co.threads threads.
+// The forward analysis over chunks of opt.chunk_parameters parameters, on opt.threads threads.
 // The chunks are fixed by the parameter list alone, so the numbers do not depend on the
 // number of threads; the nominal features are the first chunk's.
 void forward_chunks(const model::OdeModel& model, const std::vector<double>& p, const sensitivity::SensitivityOptions& opt,
                     const CycleSensitivityOptions& co, const Factorisation& qr, const std::vector<size_t>& idx,
                     CycleSensitivity& out) {
-  const size_t per = std::max<size_t>(1, co.chunk_parameters), nc = (idx.size() + per - 1) / per;
+  const size_t per = std::max<size_t>(1, opt.chunk_parameters), nc = (idx.size() + per - 1) / per;
   std::vector<Chunk> chunks(nc);
   std::vector<parallel::Task> tasks(nc);
   for (size_t k = 0; k < nc; ++k) tasks[k].id = k;
   // Threads share this process's memory: each task writes its own chunk, no bytes travel.
-  auto exec = parallel::make_openmp_executor(parallel::bounded_threads(co.threads));
+  auto exec = parallel::make_openmp_executor(parallel::bounded_threads(opt.threads));
   size_t done = 0;
   exec->run(tasks, [&](const parallel::Task& t, int) {
     const std::vector<size_t> part(idx.begin() + static_cast<std::ptrdiff_t>(t.id * per),
@@ -334,9 +334,7 @@ CycleSensitivity analyse_cycle_sensitivities(const model::OdeModel& model, const
   if (opt.method == sensitivity::Method::Forward) {
     forward_chunks(model, p, opt, co, qr, idx, out);
   } else {
-    CycleSensitivityOptions one = co;  // dy0/dp and dT/dp by the implicit-function step still
-    one.chunk_parameters = idx.size();
-    forward_chunks(model, p, opt, one, qr, idx, out);
+    forward_chunks(model, p, opt, co, qr, idx, out);  // dy0/dp and dT/dp by the implicit-function step still
     cycle_feature_differences(model, p, opt, co, idx, out);
   }
   sensitivity::rank_parameters(rep);

@@ -30,10 +30,18 @@
 
 #include <Eigen/Dense>
 
+#include "common/error.hpp"
 #include "continuation/shooting.hpp"
 #include "sensitivity/sensitivity.hpp"
 
 namespace phasmid::continuation {
+
+// The model has no steady cycle to differentiate (the cases the header names); the message is
+// the one line for the user. Every other Error (an unknown parameter, a failed run) is not this.
+class NoSteadyCycle : public Error {
+ public:
+  explicit NoSteadyCycle(const std::string& message) : Error(message) {}
+};
 
 struct CycleSensitivityOptions {
   CycleSensitivityOptions() { shooting.tolerance = 1e-3; }
@@ -47,11 +55,6 @@ struct CycleSensitivityOptions {
   // the derivatives of event-defined features are only as accurate as the event times.
   double max_rtol = 1e-8;
   double feature_cycles = 3.0;  // periods of the converged cycle the features are computed on
-  // The forward runs differentiate this many parameters each (runs of chunks are independent;
-  // the numbers depend on the chunks, never on the threads), on `threads` threads (0: OpenMP's
-  // default).
-  size_t chunk_parameters = 16;
-  int threads = 0;
 };
 
 struct CycleSensitivity {

@@ -44,7 +44,7 @@ SensitivityOutcome run_sensitivity_job(const model::OdeModel& model, const std::
       out.cycle.report = {};
       out.has_cycle = true;
       out.mode = Mode::SteadyCycle;
-    } catch (const Error& e) {
+    } catch (const continuation::NoSteadyCycle& e) {
       if (job.mode == Mode::SteadyCycle) throw;
       out.note = std::string(e.what()) + "; differentiating the transient run instead";
       if (on_note) on_note(out.note);

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numeric>
 
 #include "common/error.hpp"
 #include "io/h5_file.hpp"
+#include "parallel/executor.hpp"
 
 namespace phasmid::sensitivity {
 
@@ -107,6 +109,56 @@ void rank_parameters(SensitivityReport& rep) {
   }
 }
 
+namespace {
+
+// One chunk of forward columns: its run (the first chunk's is the nominal run) and the
+// features' gradients by its parameters.
+struct ForwardChunk {
+  std::vector<size_t> cols;  // report columns
+  solver::SolveResult run;
+  std::vector<features::FeatureGradient> gradients;
+};
+
+// The forward columns in chunks of opt.chunk_parameters, each chunk one run with its
+// sensitivities, on opt.threads threads. Chunks are fixed by the columns alone, so the numbers
+// do not depend on the threads. At least one chunk (without columns: the plain nominal run).
+std::vector<ForwardChunk> forward_chunks(const model::OdeModel& model, const std::vector<double>& p,
+                                         const std::vector<size_t>& idx, const std::vector<size_t>& fwd_cols,
+                                         const SensitivityOptions& opt, const std::vector<double>& grid,
+                                         const std::vector<solver::RootSpec>& roots, const features::FeatureOptions& fopt) {
+  const size_t per = std::max<size_t>(1, opt.chunk_parameters);
+  std::vector<ForwardChunk> chunks;
+  for (size_t c = 0; c < fwd_cols.size(); c += per)
+    chunks.push_back({{fwd_cols.begin() + static_cast<std::ptrdiff_t>(c),
+                       fwd_cols.begin() + static_cast<std::ptrdiff_t>(std::min(fwd_cols.size(), c + per))}, {}, {}});
+  if (chunks.empty()) chunks.emplace_back();
+  solver::SolverOptions sopt = opt.solver;
+  sopt.sensitivities_at_outputs = opt.write_trajectory;  // the features need them at events only
+  sopt.progress = opt.solver.progress && chunks.size() == 1;  // one bar, not several at once
+  std::vector<parallel::Task> tasks(chunks.size());
+  for (size_t k = 0; k < tasks.size(); ++k) tasks[k].id = k;
+  size_t done = 0;
+  // Threads share this process's memory: each task fills its own chunk, no bytes travel.
+  parallel::make_openmp_executor(parallel::bounded_threads(opt.threads))->run(tasks, [&](const parallel::Task& t, int) {
+    ForwardChunk& c = chunks[t.id];
+    std::vector<size_t> params;
+    for (size_t j : c.cols) params.push_back(idx[j]);
+    // Parameters that move a switch time or the initial state are handled by the solver
+    // (initial sensitivities dy0/dp and jump conditions at parameter-dependent switches).
+    c.run = solver::Simulator(model, sopt).run(p, grid, roots, params);
+    if (!params.empty()) c.gradients = features::compute_feature_gradients(model, c.run, fopt);
+    return std::string();
+  }, [&](size_t, std::string) {
+    if (opt.solver.progress && chunks.size() > 1)
+      std::fprintf(stderr, "\r%s: %zu of %zu parameters", opt.solver.progress_label.c_str(), std::min(fwd_cols.size(), ++done * per),
+                   fwd_cols.size());
+  }, [] { return true; });
+  if (opt.solver.progress && chunks.size() > 1) std::fprintf(stderr, "\n");
+  return chunks;
+}
+
+}  // namespace
+
 SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vector<double> p,
                                         const SensitivityOptions& opt) {
   auto wall0 = std::chrono::steady_clock::now();
@@ -130,9 +182,6 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
   features::FeatureOptions fopt = opt.feature_options;
   fopt.discard_ms = opt.discard_ms;
   fopt.root_offset = 0;
-  solver::SolverOptions sopt = opt.solver;
-  sopt.sensitivities_at_outputs = opt.write_trajectory;  // the features need them at events only
-  solver::Simulator sim(model, sopt);
 
   // Columns done by forward sensitivities, the rest by finite differences.
   std::vector<size_t> fwd_cols, fd_cols;
@@ -141,12 +190,8 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
     (fd ? fd_cols : fwd_cols).push_back(j);
     rep.parameter_method.push_back(fd ? "fd" : "forward");
   }
-  std::vector<size_t> fwd_params;
-  for (size_t j : fwd_cols) fwd_params.push_back(idx[j]);
-
-  // Parameters that move a switch time or the initial state are handled by the solver
-  // (initial sensitivities dy0/dp and jump conditions at parameter-dependent switches).
-  solver::SolveResult nominal = sim.run(p, grid, roots, fwd_params);
+  const std::vector<ForwardChunk> chunks = forward_chunks(model, p, idx, fwd_cols, opt, grid, roots, fopt);
+  const solver::SolveResult& nominal = chunks[0].run;
   rep.stats = nominal.stats;
   rep.features = features::compute_features(model, nominal, fopt);
   const size_t nf = rep.features.size();
@@ -160,20 +205,21 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
   const size_t nt = nominal.t.size();
   if (opt.write_trajectory) rep.trajectory.assign(nt * n * np, 0.0);
 
-  if (!fwd_cols.empty()) {
+  for (const ForwardChunk& ch : chunks) {
     // Every feature of compute_features has a forward gradient (gait_class a zero one); a
     // feature the gradient pass does not produce would keep NaN.
-    auto grads = features::compute_feature_gradients(model, nominal, fopt);
-    for (const auto& g : grads) {
+    for (const auto& g : ch.gradients) {
       const size_t f = rep.feature_index(g.feature.name);
-      for (size_t c = 0; c < fwd_cols.size(); ++c) rep.absolute(f, fwd_cols[c]) = g.gradient[c];
+      for (size_t c = 0; c < ch.cols.size(); ++c) rep.absolute(f, ch.cols[c]) = g.gradient[c];
     }
-    if (opt.write_trajectory)
+    if (opt.write_trajectory && !ch.cols.empty())
       for (size_t k = 0; k < nt; ++k)
         for (size_t i = 0; i < n; ++i)
-          for (size_t c = 0; c < fwd_cols.size(); ++c)
-            rep.trajectory[(k * n + i) * np + fwd_cols[c]] = nominal.sens(k, i, c);
+          for (size_t c = 0; c < ch.cols.size(); ++c) rep.trajectory[(k * n + i) * np + ch.cols[c]] = ch.run.sens(k, i, c);
   }
+  solver::SolverOptions sopt = opt.solver;
+  sopt.sensitivities_at_outputs = opt.write_trajectory;
+  const solver::Simulator sim(model, sopt);
   for (size_t j : fd_cols) {
     FdColumn col = fd_column(sim, p, idx[j], grid, model, fopt, rep.features, opt, rep.fd_runs);
     for (size_t f = 0; f < nf; ++f) rep.absolute(f, j) = col.dfeature[f];

@@ -33,6 +33,10 @@ struct SensitivityOptions {
   double fd_relative_step = 1e-4;       // h = fd_relative_step * max(|p|, fd_min_scale)
   double fd_min_scale = 1e-8;
   features::FeatureOptions feature_options;  // discard_ms is overwritten by the field above
+  // Forward runs differentiate this many parameters each (independent runs; the numbers depend
+  // on the chunks, never on the threads), on `threads` threads (0: OpenMP's default).
+  size_t chunk_parameters = 16;
+  int threads = 0;
 };
 
 struct SensitivityReport {

@@ -219,13 +219,13 @@ TEST(CycleSensitivity, ChunksOnTwoThreadsGiveTheSameBitsAsOnOne) {
   CycleSensitivityOptions co = default_cycle_options(*m);
   co.shooting.transient_ms = 3000;
   co.shooting.max_period_ms = 1000;
-  co.chunk_parameters = 3;
-  const auto opt = tight_options({"middle.fti.cpg_ext.g_app", "middle.fti.cpg_flx.g_app", "middle.fti.b_v", "cpg.g_L",
+  auto opt = tight_options({"middle.fti.cpg_ext.g_app", "middle.fti.cpg_flx.g_app", "middle.fti.b_v", "cpg.g_L",
                                   "mn.rate.V_th", "middle.fti.l_F0", "muscle.b"},
                                  1e-8);
-  co.threads = 1;
+  opt.chunk_parameters = 3;
+  opt.threads = 1;
   const CycleSensitivity one = analyse_cycle_sensitivities(*m, m->parameters().values(), opt, co);
-  co.threads = 2;
+  opt.threads = 2;
   const CycleSensitivity two = analyse_cycle_sensitivities(*m, m->parameters().values(), opt, co);
   ASSERT_EQ(one.report.absolute.rows(), two.report.absolute.rows());
   for (Eigen::Index f = 0; f < one.report.absolute.rows(); ++f)
