@@ -161,55 +161,58 @@ TEST(CycleSensitivity, SingleJointRatePairsAgainstConvergedDifferences) {
         << drawn[j];
 }
 
-TEST(CycleSensitivity, SpikingOrbitThatDoesNotCloseSaysSoNamingTheMeasure) {
-  auto m = make("type = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\n");
-  sensitivity::SensitivityJob job;
+// `job` in mode steady_cycle is refused with one line containing each of `says`; in mode auto
+// it differentiates the run instead, with the same line as its note.
+void refused_then_transient(const model::OdeModel& m, sensitivity::SensitivityJob job, const std::vector<std::string>& says) {
   job.mode = sensitivity::Mode::SteadyCycle;
-  job.options = tight_options({"middle.fti.cpg_flx.g_app"}, 1e-8);
-  job.floquet_options.transient_ms = 3000;
-  job.floquet_options.max_period_ms = 1000;
   try {
-    sensitivity::run_sensitivity_job(*m, m->parameters().values(), job);
-    FAIL() << "the spiking orbit closed";
-  } catch (const Error& e) {
+    sensitivity::run_sensitivity_job(m, m.parameters().values(), job);
+    ADD_FAILURE() << "a steady cycle was differentiated";
+  } catch (const NoSteadyCycle& e) {
     const std::string msg = e.what();
-    EXPECT_NE(msg.find("does not close"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("cycle-to-cycle period spread"), std::string::npos) << msg;
+    for (const auto& s : says) EXPECT_NE(msg.find(s), std::string::npos) << msg;
     EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
   }
-  // Auto falls back to the transient run, saying why.
   job.mode = sensitivity::Mode::Auto;
-  job.options.t_end_ms = 2000;
-  job.options.discard_ms = 500;
   std::string note;
-  const auto out = sensitivity::run_sensitivity_job(*m, m->parameters().values(), job,
-                                                    [&](const std::string& s) { note = s; });
+  const auto out = sensitivity::run_sensitivity_job(m, m.parameters().values(), job, [&](const std::string& s) { note = s; });
   EXPECT_EQ(out.mode, sensitivity::Mode::Transient);
-  EXPECT_NE(note.find("does not close"), std::string::npos);
+  EXPECT_NE(note.find(says.front()), std::string::npos) << note;
   EXPECT_EQ(out.note, note);
 }
 
-// A joint forced by a switch schedule has no free cycle: steady_cycle refuses it in one line,
-// auto differentiates its run.
+TEST(CycleSensitivity, SpikingOrbitThatDoesNotCloseSaysSoNamingTheMeasure) {
+  auto m = make("type = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\n");
+  sensitivity::SensitivityJob job;
+  job.options = tight_options({"middle.fti.cpg_flx.g_app"}, 1e-8);
+  job.options.t_end_ms = 2000;
+  job.options.discard_ms = 500;
+  job.floquet_options.transient_ms = 3000;
+  job.floquet_options.max_period_ms = 1000;
+  refused_then_transient(*m, job, {"does not close", "cycle-to-cycle period spread", "return residual"});
+}
+
+// A joint forced by a switch schedule has no free cycle.
 TEST(CycleSensitivity, ForcedJointIsRefusedAndAutoDifferentiatesTheRun) {
   auto m = make("type = \"mechanical_joint\"\nleg = \"middle\"\njoint = \"fti\"\nstart_phase = \"flexion\"\n");
   sensitivity::SensitivityJob job;
-  job.mode = sensitivity::Mode::SteadyCycle;
   job.options = tight_options({"middle.fti.b_v"}, 1e-8);
   job.options.t_end_ms = 3000;
   job.options.discard_ms = 1000;
   job.floquet_options.transient_ms = 1500;
   job.floquet_options.max_period_ms = 1000;
-  try {
-    sensitivity::run_sensitivity_job(*m, m->parameters().values(), job);
-    FAIL() << "a forced joint's cycle was differentiated as a free one";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("forced by the clock"), std::string::npos) << e.what();
-  }
-  job.mode = sensitivity::Mode::Auto;
-  const auto out = sensitivity::run_sensitivity_job(*m, m->parameters().values(), job);
-  EXPECT_EQ(out.mode, sensitivity::Mode::Transient);
-  EXPECT_NE(out.note.find("forced by the clock"), std::string::npos);
+  refused_then_transient(*m, job, {"forced by the clock"});
+}
+
+// A parameter the model does not have is an error in every mode, not a reason to fall back.
+TEST(CycleSensitivity, UnknownParameterIsAnErrorInAutoMode) {
+  auto m = make("type = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\nmotoneuron = \"rate\"\n");
+  sensitivity::SensitivityJob job;
+  job.options = tight_options({"middle.fti.no_such"}, 1e-8);
+  std::string note;
+  EXPECT_THROW(sensitivity::run_sensitivity_job(*m, m->parameters().values(), job, [&](const std::string& s) { note = s; }),
+               Error);
+  EXPECT_EQ(note, "");
 }
 
 // The forward runs go in chunks of parameters on threads: the numbers depend on the chunks

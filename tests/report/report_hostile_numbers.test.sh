@@ -5,12 +5,7 @@
 # (body data-status="ok", data-errors empty; issue #42). Usage: PHASMID SOURCE_DIR
 set -u
 PHASMID=$(readlink -f "$1"); SRC=$(readlink -f "$2")
-fail=0
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-[ -x /usr/bin/chromium ] || { echo "FAIL chromium is required (apt-get install -y chromium)"; exit 1; }
-/usr/bin/python3 -c 'import h5py' || { echo "FAIL h5py for Debian's python3 is required"; exit 1; }
-cd "$tmp" || exit 1
+source "$SRC/tests/report/chromium.sh"  # $tmp (the working directory), render NAME
 cp "$SRC/tests/fixtures/fti_mechanics_short.toml" sim.toml
 cp sim.toml sweep.toml
 printf '[sweep]\ndesign = "grid"\n[[sweep.parameter]]\nname = "middle.fti.b_v"\nvalues = [10.0, 12.0, 14.0]\n' >>sweep.toml
@@ -57,14 +52,7 @@ edit cont.h5 cont_special 'g = f["continuation/special_points"]; del g["index"];
 edit cont.h5 cont_special_nan 'g = f["continuation/special_points"]
 for n in ["index", "parameter", "period_ms"]: del g[n]; g[n] = np.full(len(g["kind"]), np.nan)'
 for name in feature_huge sweep_huge sweep2_huge gsa_huge cont_huge cont_special cont_special_nan; do
-  err=$("$PHASMID" report "$name.h5" -o "$name.html" 2>&1) || { echo "FAIL report $name: $err"; fail=1; continue; }
-  # 300 s: a hang guard only (the page's 15 s are Chromium's virtual time, not the machine's).
-  timeout 300 /usr/bin/chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage \
-    --user-data-dir="$tmp/profile" --virtual-time-budget=15000 --dump-dom "file://$tmp/$name.html" >"$name.dom" 2>/dev/null
-  [ $? -eq 124 ] && { echo "FAIL $name: chromium hung"; fail=1; continue; }
-  body=$(tr '\n' ' ' <"$name.dom" | grep -o '<body[^>]*>' | head -1)
-  if grep -q 'data-status="ok"' <<<"$body" && grep -q 'data-errors=""' <<<"$body"; then echo "ok $name"
-  else echo "FAIL $name: $(head -c 600 <<<"$body")"; fail=1; fi
+  render "$name"
 done
 grep -q 'special_points (unreadable' cont_special.html || { echo "FAIL cont_special: the special points are not listed as ignored"; fail=1; }
 exit $fail

@@ -6,25 +6,11 @@
 # the heat map per parameter family; a transient file says "Transient". Usage: PHASMID SOURCE_DIR
 set -u
 PHASMID=$(readlink -f "$1"); SRC=$(readlink -f "$2")
-fail=0
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-[ -x /usr/bin/chromium ] || { echo "FAIL chromium is required (apt-get install -y chromium)"; exit 1; }
-cd "$tmp" || exit 1
+source "$SRC/tests/report/chromium.sh"  # $tmp (the working directory), render NAME
 "$PHASMID" sensitivity "$SRC/configs/sensitivity_steady_gait.toml" -q -o steady.h5 >/dev/null || { echo "FAIL steady-cycle run"; exit 1; }
 sed -e 's/t_end_ms = 4000/t_end_ms = 2000/' -e 's/discard_ms = 1500/discard_ms = 500/' \
   "$SRC/configs/sensitivity_single_joint.toml" >transient.toml
 "$PHASMID" sensitivity transient.toml -q -o transient.h5 >/dev/null || { echo "FAIL transient run"; exit 1; }
-render() {  # NAME: report NAME.h5 and dump the page's DOM after its scripts ran
-  "$PHASMID" report "$1.h5" -o "$1.html" >/dev/null 2>&1 || { echo "FAIL report $1"; fail=1; return 1; }
-  # 300 s: a hang guard only (the page's 15 s are Chromium's virtual time, not the machine's).
-  timeout 300 /usr/bin/chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage \
-    --user-data-dir="$tmp/profile" --virtual-time-budget=15000 --dump-dom "file://$tmp/$1.html" >"$1.dom" 2>/dev/null
-  local body
-  body=$(tr '\n' ' ' <"$1.dom" | grep -o '<body[^>]*>' | head -1)
-  grep -q 'data-status="ok"' <<<"$body" && grep -q 'data-errors=""' <<<"$body" ||
-    { echo "FAIL $1: $(head -c 600 <<<"$body")"; fail=1; }
-}
 expect() {  # NAME TEXT: the rendered page holds TEXT
   grep -qF -- "$2" "$1.dom" && echo "ok $1: $2" || { echo "FAIL $1: no '$2' on the page"; fail=1; }
 }
