@@ -181,27 +181,28 @@ void refused_then_transient(const model::OdeModel& m, sensitivity::SensitivityJo
   EXPECT_EQ(out.note, note);
 }
 
+// A job for `parameter`: the transient mode's run [discard_ms, t_end_ms], the cycle's transient
+// and a period window of 1 s.
+sensitivity::SensitivityJob job_for(const std::string& parameter, double t_end_ms, double discard_ms, double transient_ms) {
+  sensitivity::SensitivityJob job;
+  job.options = tight_options({parameter}, 1e-8);
+  job.options.t_end_ms = t_end_ms;
+  job.options.discard_ms = discard_ms;
+  job.floquet_options.transient_ms = transient_ms;
+  job.floquet_options.max_period_ms = 1000;
+  return job;
+}
+
 TEST(CycleSensitivity, SpikingOrbitThatDoesNotCloseSaysSoNamingTheMeasure) {
   auto m = make("type = \"single_joint\"\nleg = \"middle\"\njoint = \"fti\"\n");
-  sensitivity::SensitivityJob job;
-  job.options = tight_options({"middle.fti.cpg_flx.g_app"}, 1e-8);
-  job.options.t_end_ms = 2000;
-  job.options.discard_ms = 500;
-  job.floquet_options.transient_ms = 3000;
-  job.floquet_options.max_period_ms = 1000;
-  refused_then_transient(*m, job, {"does not close", "cycle-to-cycle period spread", "return residual"});
+  refused_then_transient(*m, job_for("middle.fti.cpg_flx.g_app", 2000, 500, 3000),
+                         {"does not close", "cycle-to-cycle period spread", "return residual"});
 }
 
 // A joint forced by a switch schedule has no free cycle.
 TEST(CycleSensitivity, ForcedJointIsRefusedAndAutoDifferentiatesTheRun) {
   auto m = make("type = \"mechanical_joint\"\nleg = \"middle\"\njoint = \"fti\"\nstart_phase = \"flexion\"\n");
-  sensitivity::SensitivityJob job;
-  job.options = tight_options({"middle.fti.b_v"}, 1e-8);
-  job.options.t_end_ms = 3000;
-  job.options.discard_ms = 1000;
-  job.floquet_options.transient_ms = 1500;
-  job.floquet_options.max_period_ms = 1000;
-  refused_then_transient(*m, job, {"forced by the clock"});
+  refused_then_transient(*m, job_for("middle.fti.b_v", 3000, 1000, 1500), {"forced by the clock"});
 }
 
 // A parameter the model does not have is an error in every mode, not a reason to fall back.
