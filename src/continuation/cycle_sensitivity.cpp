@@ -8,7 +8,6 @@
 #include "common/error.hpp"
 #include "features/features.hpp"
 #include "io/h5_file.hpp"
-#include "parallel/executor.hpp"
 
 namespace phasmid::continuation {
 namespace {
@@ -167,18 +166,29 @@ struct Chunk {
   solver::SolverStats stats;
 };
 
-// The chunk's period sensitivities, its implicit-function columns, then the features and their
-// gradients on feature_cycles periods of the cycle, started on the perturbed cycle (initial
-// sensitivities dy0/dp).
-Chunk forward_chunk(const model::OdeModel& model, const std::vector<double>& p, const sensitivity::SensitivityOptions& opt,
-                    const CycleSensitivityOptions& co, const Cycle& cycle, const Factorisation& qr,
-                    const std::vector<size_t>& idx) {
+// The implicit-function columns of parameters idx: their period sensitivities solved for dy0/dp
+// (rows 0..n-1) and dT/dp (row n).
+Eigen::MatrixXd cycle_columns(const model::OdeModel& model, const std::vector<double>& p,
+                              const sensitivity::SensitivityOptions& opt, const CycleSensitivityOptions& co,
+                              const Cycle& cycle, const Factorisation& qr, const std::vector<size_t>& idx) {
   const auto n = static_cast<Eigen::Index>(model.num_states());
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n + 1, static_cast<Eigen::Index>(idx.size()));
   b.topRows(n) = -period_sensitivities(model, p, cycle, idx, opt.solver);
+  Eigen::MatrixXd x = qr.solve(b);
+  x.row(static_cast<Eigen::Index>(co.shooting.section.state)).setZero();  // held on the section, exactly
+  return x;
+}
+
+// The chunk's implicit-function columns, then with `features` the features and their gradients
+// on feature_cycles periods of the cycle, started on the perturbed cycle (initial
+// sensitivities dy0/dp).
+Chunk forward_chunk(const model::OdeModel& model, const std::vector<double>& p, const sensitivity::SensitivityOptions& opt,
+                    const CycleSensitivityOptions& co, const Cycle& cycle, const Factorisation& qr,
+                    const std::vector<size_t>& idx, bool features) {
+  const auto n = static_cast<Eigen::Index>(model.num_states());
   Chunk c;
-  c.x = qr.solve(b);
-  c.x.row(static_cast<Eigen::Index>(co.shooting.section.state)).setZero();  // held on the section, exactly
+  c.x = cycle_columns(model, p, opt, co, cycle, qr, idx);
+  if (!features) return c;
   CycleStartModel sm(model, cycle, idx, p, c.x.topRows(n));
   const std::vector<double> pe = sm.extend(p);
   const double T = cycle.period_ms;
@@ -198,44 +208,38 @@ Chunk forward_chunk(const model::OdeModel& model, const std::vector<double>& p, 
   return c;
 }
 
-// The forward analysis over chunks of opt.chunk_parameters parameters, on opt.threads threads.
-// The chunks are fixed by the parameter list alone, so the numbers do not depend on the
-// number of threads; the nominal features are the first chunk's.
+// The analysis over chunks of parameters (sensitivity::for_each_chunk): dy0/dp and dT/dp, and
+// with `features` the features' forward gradients. The chunks are fixed by the parameter list
+// alone, so the numbers do not depend on the number of threads; the nominal features are the
+// first chunk's.
 void forward_chunks(const model::OdeModel& model, const std::vector<double>& p, const sensitivity::SensitivityOptions& opt,
                     const CycleSensitivityOptions& co, const Factorisation& qr, const std::vector<size_t>& idx,
-                    CycleSensitivity& out) {
-  const size_t per = std::max<size_t>(1, opt.chunk_parameters), nc = (idx.size() + per - 1) / per;
-  std::vector<Chunk> chunks(nc);
-  std::vector<parallel::Task> tasks(nc);
-  for (size_t k = 0; k < nc; ++k) tasks[k].id = k;
-  // Threads share this process's memory: each task writes its own chunk, no bytes travel.
-  auto exec = parallel::make_openmp_executor(parallel::bounded_threads(opt.threads));
-  size_t done = 0;
-  exec->run(tasks, [&](const parallel::Task& t, int) {
-    const std::vector<size_t> part(idx.begin() + static_cast<std::ptrdiff_t>(t.id * per),
-                                   idx.begin() + static_cast<std::ptrdiff_t>(std::min(idx.size(), (t.id + 1) * per)));
-    chunks[t.id] = forward_chunk(model, p, opt, co, out.cycle, qr, part);
-    return std::string();
-  }, [&](size_t, std::string) {
-    if (opt.solver.progress) std::fprintf(stderr, "\r%s: %zu of %zu parameters", opt.solver.progress_label.c_str(), std::min(idx.size(), ++done * per), idx.size());
-  }, [] { return true; });
-  if (opt.solver.progress) std::fprintf(stderr, "\n");
-  auto& rep = out.report;
-  rep.features = chunks[0].features;
-  rep.stats = chunks[0].stats;
+                    bool features, CycleSensitivity& out) {
+  const size_t per = std::max<size_t>(1, opt.chunk_parameters);
+  std::vector<Chunk> chunks((idx.size() + per - 1) / per);
+  sensitivity::for_each_chunk(idx.size(), opt, [&](size_t k, size_t begin, size_t end) {
+    const std::vector<size_t> part(idx.begin() + static_cast<std::ptrdiff_t>(begin), idx.begin() + static_cast<std::ptrdiff_t>(end));
+    chunks[k] = forward_chunk(model, p, opt, co, out.cycle, qr, part, features);
+  });
   const auto n = static_cast<Eigen::Index>(model.num_states());
   out.dstate.resize(n, static_cast<Eigen::Index>(idx.size()));
   out.dperiod.resize(static_cast<Eigen::Index>(idx.size()));
-  rep.absolute = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(rep.features.size()), static_cast<Eigen::Index>(idx.size()), NAN);
-  for (size_t k = 0; k < nc; ++k) {
+  for (size_t k = 0; k < chunks.size(); ++k) {
     const auto c0 = static_cast<Eigen::Index>(k * per), m = chunks[k].x.cols();
     out.dstate.middleCols(c0, m) = chunks[k].x.topRows(n);
     out.dperiod.segment(c0, m) = chunks[k].x.row(n);
+  }
+  if (!features) return;
+  auto& rep = out.report;
+  rep.features = chunks[0].features;
+  rep.stats = chunks[0].stats;
+  rep.absolute = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(rep.features.size()), static_cast<Eigen::Index>(idx.size()), NAN);
+  for (size_t k = 0; k < chunks.size(); ++k)
     for (size_t f = 0; f < chunks[k].features.size(); ++f)
       for (size_t g = 0; g < rep.features.size(); ++g)
         if (rep.features[g].name == chunks[k].features[f].name)
-          rep.absolute.block(static_cast<Eigen::Index>(g), c0, 1, m) = chunks[k].gradient.row(static_cast<Eigen::Index>(f));
-  }
+          rep.absolute.block(static_cast<Eigen::Index>(g), static_cast<Eigen::Index>(k * per), 1, chunks[k].x.cols()) =
+              chunks[k].gradient.row(static_cast<Eigen::Index>(f));
 }
 
 // Central differences of the converged cycle's features, Newton from the nominal cycle.
@@ -313,17 +317,7 @@ CycleSensitivity analyse_cycle_sensitivities(const model::OdeModel& model, const
   const std::vector<size_t> idx = sensitivity::select_parameters(model, opt.parameters);
   CycleSensitivity out;
   auto& rep = out.report;
-  rep.method = opt.method;
-  rep.rtol = opt.solver.rtol;
-  rep.atol = opt.solver.atol;
-  rep.tolerance_factor = opt.method == sensitivity::Method::Forward ? opt.solver.sensitivity_tolerance_factor : 1.0;
-  for (size_t k : idx) {
-    const auto& par = model.parameters().at(k);
-    rep.parameters.push_back(par.name);
-    rep.parameter_units.push_back(par.unit);
-    rep.parameter_values.push_back(p[k]);
-    rep.parameter_method.push_back(sensitivity::method_name(opt.method));
-  }
+  rep = sensitivity::report_header(model, p, idx, opt);
   Shot shot;
   out.cycle = converge(model, p, co, out.newton, shot);
   out.cycle.y0 = on_section(out.cycle.y0, co.shooting.section);
@@ -331,12 +325,9 @@ CycleSensitivity analyse_cycle_sensitivities(const model::OdeModel& model, const
   out.residual = out.newton.residual;
   out.multipliers = multipliers(shot.monodromy);
   const Factorisation qr = implicit_matrix(model, shot, co.shooting.section.state, out.multipliers);
-  if (opt.method == sensitivity::Method::Forward) {
-    forward_chunks(model, p, opt, co, qr, idx, out);
-  } else {
-    forward_chunks(model, p, opt, co, qr, idx, out);  // dy0/dp and dT/dp by the implicit-function step still
-    cycle_feature_differences(model, p, opt, co, idx, out);
-  }
+  const bool forward = opt.method == sensitivity::Method::Forward;
+  forward_chunks(model, p, opt, co, qr, idx, forward, out);  // dy0/dp and dT/dp in either method
+  if (!forward) cycle_feature_differences(model, p, opt, co, idx, out);
   sensitivity::rank_parameters(rep);
   rep.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return out;

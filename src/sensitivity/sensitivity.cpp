@@ -119,63 +119,77 @@ struct ForwardChunk {
   std::vector<features::FeatureGradient> gradients;
 };
 
-// The forward columns in chunks of opt.chunk_parameters, each chunk one run with its
-// sensitivities, on opt.threads threads. Chunks are fixed by the columns alone, so the numbers
-// do not depend on the threads. At least one chunk (without columns: the plain nominal run).
+// The forward columns in chunks (for_each_chunk), each chunk one run with its sensitivities.
+// At least one chunk (without columns: the plain nominal run).
 std::vector<ForwardChunk> forward_chunks(const model::OdeModel& model, const std::vector<double>& p,
                                          const std::vector<size_t>& idx, const std::vector<size_t>& fwd_cols,
                                          const SensitivityOptions& opt, const std::vector<double>& grid,
                                          const std::vector<solver::RootSpec>& roots, const features::FeatureOptions& fopt) {
   const size_t per = std::max<size_t>(1, opt.chunk_parameters);
-  std::vector<ForwardChunk> chunks;
-  for (size_t c = 0; c < fwd_cols.size(); c += per)
-    chunks.push_back({{fwd_cols.begin() + static_cast<std::ptrdiff_t>(c),
-                       fwd_cols.begin() + static_cast<std::ptrdiff_t>(std::min(fwd_cols.size(), c + per))}, {}, {}});
-  if (chunks.empty()) chunks.emplace_back();
+  std::vector<ForwardChunk> chunks(std::max<size_t>(1, (fwd_cols.size() + per - 1) / per));
   solver::SolverOptions sopt = opt.solver;
   sopt.sensitivities_at_outputs = opt.write_trajectory;  // the features need them at events only
   sopt.progress = opt.solver.progress && chunks.size() == 1;  // one bar, not several at once
-  std::vector<parallel::Task> tasks(chunks.size());
-  for (size_t k = 0; k < tasks.size(); ++k) tasks[k].id = k;
-  size_t done = 0;
-  // Threads share this process's memory: each task fills its own chunk, no bytes travel.
-  parallel::make_openmp_executor(parallel::bounded_threads(opt.threads))->run(tasks, [&](const parallel::Task& t, int) {
-    ForwardChunk& c = chunks[t.id];
+  auto run = [&](size_t k, size_t begin, size_t end) {
+    ForwardChunk& c = chunks[k];
     std::vector<size_t> params;
-    for (size_t j : c.cols) params.push_back(idx[j]);
+    for (size_t j = begin; j < end; ++j) c.cols.push_back(fwd_cols[j]), params.push_back(idx[fwd_cols[j]]);
     // Parameters that move a switch time or the initial state are handled by the solver
     // (initial sensitivities dy0/dp and jump conditions at parameter-dependent switches).
     c.run = solver::Simulator(model, sopt).run(p, grid, roots, params);
     if (!params.empty()) c.gradients = features::compute_feature_gradients(model, c.run, fopt);
-    return std::string();
-  }, [&](size_t, std::string) {
-    if (opt.solver.progress && chunks.size() > 1)
-      std::fprintf(stderr, "\r%s: %zu of %zu parameters", opt.solver.progress_label.c_str(), std::min(fwd_cols.size(), ++done * per),
-                   fwd_cols.size());
-  }, [] { return true; });
-  if (opt.solver.progress && chunks.size() > 1) std::fprintf(stderr, "\n");
+  };
+  if (for_each_chunk(fwd_cols.size(), opt, run) == 0) run(0, 0, 0);
   return chunks;
 }
 
 }  // namespace
+
+SensitivityReport report_header(const model::OdeModel& model, const std::vector<double>& p,
+                                const std::vector<size_t>& idx, const SensitivityOptions& opt) {
+  SensitivityReport rep;
+  rep.method = opt.method;
+  rep.rtol = opt.solver.rtol;
+  rep.atol = opt.solver.atol;
+  rep.tolerance_factor = opt.method == Method::Forward ? opt.solver.sensitivity_tolerance_factor : 1.0;
+  for (size_t k : idx) {
+    const auto& par = model.parameters().at(k);
+    rep.parameters.push_back(par.name);
+    rep.parameter_units.push_back(par.unit);
+    rep.parameter_values.push_back(p[k]);
+    rep.parameter_method.push_back(method_name(opt.method));
+  }
+  return rep;
+}
+
+size_t for_each_chunk(size_t count, const SensitivityOptions& opt,
+                      const std::function<void(size_t chunk, size_t begin, size_t end)>& run) {
+  const size_t per = std::max<size_t>(1, opt.chunk_parameters), nc = (count + per - 1) / per;
+  std::vector<parallel::Task> tasks(nc);
+  for (size_t k = 0; k < nc; ++k) tasks[k].id = k;
+  const bool progress = opt.solver.progress && nc > 1;
+  size_t done = 0;
+  // Threads share this process's memory: each call fills its own chunk, no bytes travel.
+  parallel::make_openmp_executor(parallel::bounded_threads(opt.threads))->run(tasks, [&](const parallel::Task& t, int) {
+    run(t.id, t.id * per, std::min(count, (t.id + 1) * per));
+    return std::string();
+  }, [&](size_t, std::string) {
+    if (progress)
+      std::fprintf(stderr, "\r%s: %zu of %zu parameters", opt.solver.progress_label.c_str(), std::min(count, ++done * per),
+                   count);
+  }, [] { return true; });
+  if (progress) std::fprintf(stderr, "\n");
+  return nc;
+}
 
 SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vector<double> p,
                                         const SensitivityOptions& opt) {
   auto wall0 = std::chrono::steady_clock::now();
   const auto& ps = model.parameters();
   if (p.size() != ps.size()) throw Error("internal: parameter vector size mismatch");
-  SensitivityReport rep;
-  rep.method = opt.method;
-  rep.rtol = opt.solver.rtol;
-  rep.atol = opt.solver.atol;
-  rep.tolerance_factor = opt.method == Method::Forward ? opt.solver.sensitivity_tolerance_factor : 1.0;
   const std::vector<size_t> idx = select_parameters(model, opt.parameters);
+  SensitivityReport rep = report_header(model, p, idx, opt);
   const size_t np = idx.size(), n = model.num_states();
-  for (size_t k : idx) {
-    rep.parameters.push_back(ps.at(k).name);
-    rep.parameter_units.push_back(ps.at(k).unit);
-    rep.parameter_values.push_back(p[k]);
-  }
 
   const std::vector<double> grid = solver::output_grid(opt.t_end_ms, opt.output_dt_ms);
   const std::vector<solver::RootSpec> roots = features::feature_roots(model, p);
@@ -185,11 +199,7 @@ SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vecto
 
   // Columns done by forward sensitivities, the rest by finite differences.
   std::vector<size_t> fwd_cols, fd_cols;
-  for (size_t j = 0; j < np; ++j) {
-    bool fd = opt.method == Method::FiniteDifference;
-    (fd ? fd_cols : fwd_cols).push_back(j);
-    rep.parameter_method.push_back(fd ? "fd" : "forward");
-  }
+  for (size_t j = 0; j < np; ++j) (opt.method == Method::FiniteDifference ? fd_cols : fwd_cols).push_back(j);
   const std::vector<ForwardChunk> chunks = forward_chunks(model, p, idx, fwd_cols, opt, grid, roots, fopt);
   const solver::SolveResult& nominal = chunks[0].run;
   rep.stats = nominal.stats;

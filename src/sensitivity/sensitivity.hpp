@@ -3,6 +3,7 @@
 // CVODES forward sensitivities (exact df/dp and J s from the templated right-hand side),
 // feature sensitivities from event times (implicit-function formula), normalised
 // sensitivities and a ranking per feature; or the same by central finite differences.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,19 @@ std::vector<size_t> select_parameters(const model::OdeModel& model, const std::v
 // Fills `relative` (p/F dF/dp, NaN where F == 0) and `ranking` from `absolute`, the features
 // and the parameter values.
 void rank_parameters(SensitivityReport& report);
+
+// A report's header: method, tolerances, and name, unit, value and method of each parameter
+// in `idx` (the columns of every matrix to come).
+SensitivityReport report_header(const model::OdeModel& model, const std::vector<double>& p,
+                                const std::vector<size_t>& idx, const SensitivityOptions& options);
+
+// Calls run(k, begin, end) for each chunk k of columns [begin, end) of count columns, in
+// chunks of options.chunk_parameters, on options.threads threads (each call on its own
+// thread; they must not share mutable state), with a progress line per finished chunk when
+// options.solver.progress and there is more than one chunk. Returns the number of chunks; none
+// without columns. An exception in a call is rethrown once the calls in flight have returned.
+size_t for_each_chunk(size_t count, const SensitivityOptions& options,
+                      const std::function<void(size_t chunk, size_t begin, size_t end)>& run);
 
 SensitivityReport analyse_sensitivities(const model::OdeModel& model, std::vector<double> p,
                                         const SensitivityOptions& options);
