@@ -12,6 +12,7 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin hdf5-tools time
   python3-dev pybind11-dev python3-numpy python3-h5py python3-pytest python3-nbclient python3-ipykernel
   python3-matplotlib
+  libmatio-dev python3-scipy
 )
 # Report tests render the HTML reports in a real browser.
 if [ "${PHASMID_WITH_BROWSER:-1}" = 1 ]; then PACKAGES+=(chromium); fi

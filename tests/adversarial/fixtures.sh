@@ -63,3 +63,10 @@ cont_fixture() {
   "$PHASMID" continue "$fixtures/cont_run.toml" -q -o "$fixtures/cont.h5" || echo "fixture cont.h5 failed"
 }
 cont_fixture
+# trial FILE [ARGS]: a synthetic Stick Insect Locomotion trial (tests/fixtures/locomotion_trial.py;
+# --delete FIELD / --set FIELD=EXPR make it malformed); skipped without Debian's scipy.
+trial() {
+  /usr/bin/python3 -c 'import scipy' 2>/dev/null || { echo "SKIP: no scipy for Debian's python3"; return 1; }
+  /usr/bin/python3 "$SRC/tests/fixtures/locomotion_trial.py" "$@"
+}
+export -f trial
