@@ -467,6 +467,32 @@
           scales: { x: axis(withUnits('time', tu)), y: axis(withUnits(k.name + ' angle', k.units || 'deg')) } }
       });
     });
+    (s.step_cycles || []).forEach(function (sc, i) {
+      var fmt = function (v, d) { return v === null || v === undefined ? '?' : Number(v).toFixed(d); };
+      var summary = 'period ' + fmt(sc.data_period_ms, 0) + ' ms (animal, mean of ' + fmt(sc.data_steps, 0) + ' steps) vs ' +
+        fmt(sc.model_period_ms, 0) + ' ms (model, ' + fmt(sc.model_steps, 0) + ' steps); duty factor ' + fmt(sc.data_duty_factor, 2) +
+        ' vs ' + fmt(sc.model_duty_factor, 2);
+      (sc.channels || []).forEach(function (c) {
+        var id = 'fig-fit-steps-' + i + '-' + safeId(c.name);
+        var f = figure(grid, id, 'Step cycle of ' + c.name + ' (' + (sc.leg || '') + ' against the model\'s ' + (sc.model_leg || '') +
+          ' leg): the animal\'s mean ± SD over steps per phase bin (band, dashed) and the fitted model through its observable (line); ' +
+          summary + '.', 300);
+        var at = function (ys) { return ys.map(function (y, k) { return { x: sc.phase[k], y: y }; }); };
+        var lo = c.data_mean.map(function (m, k) { return c.data_sd[k] === null ? m : m - c.data_sd[k]; });
+        var hi = c.data_mean.map(function (m, k) { return c.data_sd[k] === null ? m : m + c.data_sd[k]; });
+        var band = { borderWidth: 0, pointRadius: 0, showLine: true, backgroundColor: 'rgba(85,85,85,0.18)' };
+        draw(id, f, {
+          type: 'scatter',
+          data: { datasets: [
+            Object.assign({ label: 'animal mean − SD', data: at(lo), parsing: false }, band),
+            Object.assign({ label: 'animal mean + SD', data: at(hi), parsing: false, fill: '-1' }, band),
+            { label: 'animal mean', data: at(c.data_mean), parsing: false, showLine: true, pointRadius: 0, borderColor: '#555', borderDash: [5, 3], borderWidth: 1.5 },
+            lineDataset('model', at(c.model), 1, { borderWidth: 2 })] },
+          options: { plugins: { title: titleOpt('Step cycle: ' + c.name) },
+            scales: { x: axis('phase (touchdown to touchdown)', { type: 'linear', min: 0, max: 1 }), y: axis(withUnits(c.name + ' angle', 'deg')) } }
+        });
+      });
+    });
     if (names.length && s.estimate) {
       var units = s.parameter_units || [];
       table(sec, 'table-fit-estimates', 'Estimates ± standard errors', ['parameter', 'estimate', '± standard error', 'relative SE (%)', 'unit'],

@@ -85,7 +85,7 @@ nlohmann::json to_json(const LegCycles& legs) {
                        {"next_touchdown_ms", s.next_touchdown_ms}, {"dropped", s.dropped}});
     nlohmann::json ch;
     for (size_t k = 0; k < c.channels.size(); ++k) ch[c.channels[k]] = {{"mean_deg", nums(c.mean_deg[k])}, {"sd_deg", nums(c.sd_deg[k])}};
-    j[leg] = {{"median_period_ms", c.median_period_ms}, {"period_sd_ms", num(c.period_sd_ms)},
+    j[leg] = {{"median_period_ms", c.median_period_ms}, {"mean_period_ms", c.mean_period_ms}, {"period_sd_ms", num(c.period_sd_ms)},
               {"duty_factor", c.duty_factor}, {"duty_factor_sd", num(c.duty_factor_sd)}, {"kept", c.kept()},
               {"steps", steps}, {"phase", nums(c.phase)}, {"channels", ch}};
   }
@@ -121,6 +121,7 @@ void write_h5(const StepsArgs& a, const LegCycles& legs) {
       w.write(g + "/sd_deg/" + c.channels[k], c.sd_deg[k], "deg");
     }
     w.set_attribute(g, "median_period_ms", c.median_period_ms);
+    w.set_attribute(g, "mean_period_ms", c.mean_period_ms);
     w.set_attribute(g, "period_sd_ms", c.period_sd_ms);
     w.set_attribute(g, "duty_factor", c.duty_factor);
     w.set_attribute(g, "duty_factor_sd", c.duty_factor_sd);

@@ -303,9 +303,9 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
                      "max_evaluations", "function_tolerance", "parameter_tolerance", "gradient_tolerance", "initial_trust_region_radius", "loss",
                      "loss_scale", "t_end_ms", "discard_ms", "absolute_sigma", "profile", "profile_points",
                      "profile_span", "target_set", "output_dt_ms", "parameter_table", "parameters", "feature",
-                     "switch", "data", "min_swing_deg", "min_swing_fraction", "sensitivity_error_control"});
+                     "switch", "data", "recording", "min_swing_deg", "min_swing_fraction", "sensitivity_error_control"});
 
-  load_fit_common(cfg, fit, ov, {"feature", "switch"},
+  load_fit_common(cfg, fit, ov, {"feature", "switch", "recording"},
                   [&](const std::string& name) {
                     for (auto& mp : model.parameters().all())
                       if (parameter_id_matches(name, mp.name)) return mp.value;
@@ -375,21 +375,26 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
     k.file = file;
     spec.targets.kinematics.push_back(std::move(k));
   };
-  if (!ov.data.empty()) read_data(data_tables.empty() ? nullptr : data_tables[0], ov.data);
+  // --data replaces the file of the one [fit.data] or [[fit.recording]] (data first).
+  const bool data_to_recording = data_tables.empty() && !fit_tables(cfg, fit, "recording").empty();
+  if (!ov.data.empty() && !data_to_recording) read_data(data_tables.empty() ? nullptr : data_tables[0], ov.data);
   else
     for (auto* t : data_tables) read_data(t, "");
+  FitOverrides recording_ov = ov;
+  if (!data_to_recording) recording_ov.data.clear();
+  load_recording_targets(cfg, fit, recording_ov, spec);
 
   // Horizon: [fit] overrides [simulation] for feature targets; kinematic data set their own.
   spec.problem.discard_ms = sim.discard_ms;
   if (auto n = get("discard_ms")) spec.problem.discard_ms = number(cfg, *n, "discard_ms");
   if (auto n = get("t_end_ms")) spec.problem.t_end_ms = number(cfg, *n, "t_end_ms");
-  else if (!spec.targets.features.empty()) spec.problem.t_end_ms = sim.t_end_ms;
+  else if (!spec.targets.features.empty() || !spec.targets.step_cycles.empty()) spec.problem.t_end_ms = sim.t_end_ms;
   if (!spec.targets.features.empty() && spec.problem.discard_ms >= spec.problem.t_end_ms)
     throw Error(cfg.path + ": discard_ms must be below t_end_ms for feature targets");
   check_horizon(cfg, spec);
   spec.optimizer.progress_label = "fit";
   if (spec.targets.empty())
-    throw Error(cfg.path + ": the fit has no targets (give --data KIN.csv, [[fit.feature]], [[fit.switch]] or [fit.data])");
+    throw Error(cfg.path + ": the fit has no targets (give --data KIN.csv, [[fit.feature]], [[fit.switch]], [fit.data] or [[fit.recording]])");
   return spec;
 }
 

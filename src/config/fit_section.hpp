@@ -35,6 +35,11 @@ using ModelValue = std::function<double(const std::string& parameter_id)>;
 void load_fit_common(const config::Config& cfg, const toml::table& fit, const FitOverrides& overrides,
                      const std::vector<std::string>& target_keys, const ModelValue& model_value, FitSpec& spec);
 
+// [[fit.recording]] tables (with their [[fit.recording.observable]]s) of the target set: each
+// recording read and summarised as step cycles (docs/recordings.md). `--data` replaces the file
+// of the config's one recording.
+void load_recording_targets(const config::Config& cfg, const toml::table& fit, const FitOverrides& overrides, FitSpec& spec);
+
 // Resolves a path named in a config: absolute, relative to the config's directory, or (for
 // embedded configs) relative to the working directory or the source tree.
 std::string resolve_path(const config::Config& cfg, const std::string& path);

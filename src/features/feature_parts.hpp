@@ -65,6 +65,14 @@ constexpr const char* kLagPairs[][2] = {{"hind", "middle"}, {"middle", "front"},
 
 bool has_three_contact_legs(const model::OdeModel& model);
 
+// The touch-down and lift-off times (ms, with dt/dp when with_grad) of the contact leg `leg`
+// after opt.discard_ms, debounced as the per-leg features count them. `roots`: feature_roots.
+struct ContactTimes {
+  std::vector<Dual> touchdown, liftoff;
+};
+ContactTimes contact_times(const model::OdeModel& model, const solver::SolveResult& res, const FeatureOptions& opt,
+                           bool with_grad, const std::vector<solver::RootSpec>& roots, const std::string& leg);
+
 // The per-leg features and the phase lags between legs of a run (docs/walking_model.md), in
 // catalogue order. `roots`: feature_roots(model), whose state indices the event-time formula reads.
 std::vector<DualFeature> leg_features(const model::OdeModel& model, const solver::SolveResult& res,

@@ -308,6 +308,21 @@ std::vector<DualFeature> leg_features(const model::OdeModel& model, const solver
   return run.out;
 }
 
+ContactTimes contact_times(const model::OdeModel& model, const solver::SolveResult& res, const FeatureOptions& opt,
+                           bool with_grad, const std::vector<solver::RootSpec>& roots, const std::string& leg) {
+  const size_t ns = with_grad ? res.sens_params.size() : 0;
+  LegRun run{model, res, opt, with_grad, roots, ns, leg_roots(model), opt.root_offset + model.angles().size(),
+             model.angles().size(), {}, {}, {}, {}};
+  ContactTimes out;
+  for (size_t l = 0; l < run.legs.size(); ++l) {
+    if (run.legs[l].leg != leg) continue;
+    const ContactEvents c = contact_events(run, l);
+    for (const EventDual& x : c.td) out.touchdown.push_back(x.t);
+    for (const EventDual& x : c.lo) out.liftoff.push_back(x.t);
+  }
+  return out;
+}
+
 bool has_three_contact_legs(const model::OdeModel& model) {
   return model.contact_leg("hind") && model.contact_leg("middle") && model.contact_leg("front");
 }

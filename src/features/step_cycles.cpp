@@ -4,15 +4,11 @@
 #include <cmath>
 
 #include "common/error.hpp"
+#include "common/format.hpp"
 
 namespace phasmid::features {
 namespace {
 
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -24,11 +20,11 @@ void check_order(const std::vector<Stance>& s, const std::string& what) {
   for (size_t i = 0; i < s.size(); ++i) {
     const std::string at = what + ": stance " + std::to_string(i + 1);
     if (std::isfinite(s[i].touchdown_ms) && std::isfinite(s[i].liftoff_ms) && s[i].liftoff_ms <= s[i].touchdown_ms)
-      throw Error(at + " lifts off (" + num(s[i].liftoff_ms) + " ms) before it touches down (" + num(s[i].touchdown_ms) + " ms)");
+      throw Error(at + " lifts off (" + format_g(s[i].liftoff_ms) + " ms) before it touches down (" + format_g(s[i].touchdown_ms) + " ms)");
     if (i == 0) continue;
     const double prev = std::isfinite(s[i - 1].liftoff_ms) ? s[i - 1].liftoff_ms : s[i - 1].touchdown_ms;
     if (std::isfinite(prev) && std::isfinite(s[i].touchdown_ms) && s[i].touchdown_ms < prev)
-      throw Error(at + " touches down (" + num(s[i].touchdown_ms) + " ms) before the previous stance ends (" + num(prev) + " ms)");
+      throw Error(at + " touches down (" + format_g(s[i].touchdown_ms) + " ms) before the previous stance ends (" + format_g(prev) + " ms)");
   }
 }
 
@@ -71,8 +67,8 @@ void drop_transient_and_outliers(std::vector<Step>& steps, const StepCycleOption
   const double m = median(periods);
   for (auto& st : steps)
     if (st.dropped.empty() && std::abs(st.period_ms() - m) > o.max_period_deviation * m)
-      st.dropped = "period outlier: " + num(st.period_ms()) + " ms is more than " + num(100 * o.max_period_deviation) +
-                   " % from the median " + num(m) + " ms";
+      st.dropped = "period outlier: " + format_g(st.period_ms()) + " ms is more than " + format_g(100 * o.max_period_deviation) +
+                   " % from the median " + format_g(m) + " ms";
 }
 
 double interpolate(const std::vector<double>& t, const std::vector<double>& x, double at) {
@@ -112,7 +108,7 @@ std::string why_none(const std::vector<Step>& steps) {
 std::string StepCycleOptions::invalid_reason() const {
   if (bins < 2) return "bins must be >= 2 (is " + std::to_string(bins) + ")";
   if (discard_steps < 0) return "discard_steps must be >= 0 (is " + std::to_string(discard_steps) + ")";
-  if (!(max_period_deviation > 0)) return "max_period_deviation must be > 0 (is " + num(max_period_deviation) + ")";
+  if (!(max_period_deviation > 0)) return "max_period_deviation must be > 0 (is " + format_g(max_period_deviation) + ")";
   return "";
 }
 
@@ -125,8 +121,8 @@ std::vector<Stance> stances_from_contact(const std::vector<double>& t, const std
   const double nan = std::nan("");
   for (size_t k = 0; k < c.size(); ++k) {
     const bool on = c[k] == 1, was = k > 0 && c[k - 1] == 1;
-    if (on && !was) out.push_back({k == 0 ? nan : t[k], nan});
-    if (!on && was) out.back().liftoff_ms = t[k];
+    if (on && !was) out.push_back({k == 0 ? nan : 0.5 * (t[k - 1] + t[k]), nan});
+    if (!on && was) out.back().liftoff_ms = 0.5 * (t[k - 1] + t[k]);
   }
   return out;
 }
@@ -147,8 +143,7 @@ StepCycles step_cycles(const std::vector<double>& t, const std::vector<std::stri
     throw Error(what + ": no step left of " + std::to_string(r.steps.size()) + " touchdown-to-touchdown intervals" +
                 why_none(r.steps) + " (step rules: docs/recordings.md)");
   r.median_period_ms = median(periods);
-  double mp;
-  mean_sd(periods, mp, r.period_sd_ms);
+  mean_sd(periods, r.mean_period_ms, r.period_sd_ms);
   mean_sd(duty, r.duty_factor, r.duty_factor_sd);
   for (int k = 0; k < o.bins; ++k) r.phase.push_back((k + 0.5) / o.bins);
   for (const auto& ch : x) {

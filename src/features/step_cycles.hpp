@@ -42,14 +42,17 @@ struct StepCycles {
   std::vector<double> phase;  // bin centres, (k + 1/2) / bins
   std::vector<std::string> channels;
   std::vector<std::vector<double>> mean_deg, sd_deg;  // per channel, per bin (SD: n - 1; NaN for one step)
-  double median_period_ms = 0, period_sd_ms = 0;      // over kept steps
+  // Over kept steps. The median is the robust summary; the mean is the fit's (frames quantise
+  // every period to whole frames, and the median of quantised periods keeps up to half a
+  // frame of bias, where the mean has none).
+  double median_period_ms = 0, mean_period_ms = 0, period_sd_ms = 0;
   double duty_factor = 0, duty_factor_sd = 0;         // mean and SD over kept steps
   size_t kept() const;
 };
 
-// Stances from a sampled 0/1 contact signal: touchdown at the first sample in contact, lift-off
-// at the first sample after it out of contact. Contact at the first (last) sample censors that
-// stance's touchdown (lift-off). Values other than 0, 1 and NaN are the caller's to reject.
+// Stances from a sampled 0/1 contact signal: the touchdown lies between the last sample out of
+// contact and the first in contact and is taken halfway between them; the lift-off likewise.
+// Contact at the first (last) sample censors that stance's touchdown (lift-off). Values other than 0, 1 and NaN are the caller's to reject.
 std::vector<Stance> stances_from_contact(const std::vector<double>& time_ms, const std::vector<double>& contact);
 
 // The summary. `samples[c][k]` is channel c at time_ms[k] (strictly increasing). Throws Error

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "common/error.hpp"
+#include "common/format.hpp"
 #include "common/units.hpp"
 #include "features/joint_range.hpp"
 #include "io/h5_file.hpp"
@@ -53,11 +54,6 @@ std::vector<size_t> match_parameters(const model::ParameterSet& ps, const std::s
   return ks;
 }
 
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
 }  // namespace
 
 struct FitProblem::Run {
@@ -80,12 +76,16 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
   const auto& ps = model_.parameters();
   base_p_ = ps.values();
   std::set<std::string> offset_ids;
-  for (auto& k : targets_.kinematics)
-    if (!k.time_offset_parameter.empty()) {
-      if (ps.contains(k.time_offset_parameter))
-        throw Error(k.origin + ": time offset parameter '" + k.time_offset_parameter + "' is also a model parameter");
-      offset_ids.insert(k.time_offset_parameter);
-    }
+  auto add_offset = [&](const std::string& id, const std::string& unit, const std::string& origin, const char* what) {
+    if (id.empty()) return;
+    if (ps.contains(id)) throw Error(origin + ": " + what + " parameter '" + id + "' is also a model parameter");
+    auto [it, fresh] = offset_units_.emplace(id, unit);
+    if (!fresh && it->second != unit) throw Error(origin + ": parameter '" + id + "' is a time offset (ms) and an angle offset (deg)");
+    offset_ids.insert(id);
+  };
+  for (auto& k : targets_.kinematics) add_offset(k.time_offset_parameter, "ms", k.origin, "time offset");
+  for (auto& t : targets_.step_cycles)
+    for (auto& o : t.observables) add_offset(o.offset_parameter, "deg", o.origin, "offset");
   check_parameters(offset_ids);
   map_estimates(offset_ids);
   if (est_.empty()) throw Error("no parameter is estimated (set estimate = 1 for at least one)");
@@ -106,7 +106,7 @@ void FitProblem::check_parameters(const std::set<std::string>& offset_ids) {
     if (!seen.insert(fp.id).second) throw Error(w + "parameter '" + fp.id + "' given twice");
     validate(fp);
     if (offset_ids.count(fp.id)) {
-      if (fp.scale != Scale::Lin) throw Error(w + "time offset '" + fp.id + "' must use parameterScale lin");
+      if (fp.scale != Scale::Lin) throw Error(w + "offset '" + fp.id + "' must use parameterScale lin");
       continue;
     }
     std::vector<size_t> ks = match_parameters(ps, fp.id, w);
@@ -118,11 +118,11 @@ void FitProblem::check_parameters(const std::set<std::string>& offset_ids) {
         throw Error(w + "parameter '" + fp.id + "' names " + mp.name + ", which '" + it->second + "' names already");
       if (fp.estimate) {
         if (fp.lower < mp.lower || fp.upper > mp.upper)
-          throw Error(w + "bounds [" + fmt(fp.lower) + ", " + fmt(fp.upper) + "] of '" + mp.name +
-                      "' leave the admissible range [" + fmt(mp.lower) + ", " + fmt(mp.upper) + "] " + mp.unit);
+          throw Error(w + "bounds [" + format_g(fp.lower) + ", " + format_g(fp.upper) + "] of '" + mp.name +
+                      "' leave the admissible range [" + format_g(mp.lower) + ", " + format_g(mp.upper) + "] " + mp.unit);
       } else {
         if (fp.nominal < mp.lower || fp.nominal > mp.upper)
-          throw Error(w + "fixed value " + fmt(fp.nominal) + " of '" + mp.name + "' outside the admissible range");
+          throw Error(w + "fixed value " + format_g(fp.nominal) + " of '" + mp.name + "' outside the admissible range");
         base_p_[k] = fp.nominal;
       }
     }
@@ -135,7 +135,7 @@ void FitProblem::map_estimates(const std::set<std::string>& offset_ids) {
   const auto& ps = model_.parameters();
   for (auto& fp : params_) {
     if (!fp.estimate) continue;
-    EstMap e{false, {}, {}};
+    EstMap e{false, {}, {}, offset_ids.count(fp.id) ? offset_units_.at(fp.id) : ""};
     if (!offset_ids.count(fp.id)) {
       e.is_model = true;
       e.model_indices = match_parameters(ps, fp.id, "");
@@ -174,7 +174,7 @@ void FitProblem::label_targets() {
     if (!(s.angle_tolerance_deg > 0)) throw Error(s.origin + ": angle_tolerance_deg must be > 0");
     const auto& ch = model_.angles()[switch_channel_.back()];
     deg_per_s(model_.states()[ch.velocity_state].unit, model_.states()[ch.velocity_state].name);
-    std::string pre = "switch " + s.channel + " @" + fmt(s.time_ms) + "ms ";
+    std::string pre = "switch " + s.channel + " @" + format_g(s.time_ms) + "ms ";
     labels_.push_back(pre + "angle");
     if (s.velocity_tolerance_deg_s > 0) labels_.push_back(pre + "velocity");
     if (s.acceleration_tolerance_deg_s2 > 0) labels_.push_back(pre + "acceleration");
@@ -205,11 +205,12 @@ void FitProblem::label_targets() {
     for (size_t c = 0; c < chans.size(); ++c)
       for (size_t s = 0; s < k.data.time_ms.size(); ++s)
         if (k.data.time_ms[s] >= k.t_min_ms && std::isfinite(k.data.angles_deg[c][s])) {
-          labels_.push_back("data " + k.data.channels[c] + " @" + fmt(k.data.time_ms[s]) + "ms");
+          labels_.push_back("data " + k.data.channels[c] + " @" + format_g(k.data.time_ms[s]) + "ms");
           ++used;
         }
     if (used == 0) throw Error(k.origin + ": no usable samples (all missing or before t_min_ms)");
   }
+  label_step_cycles();
 }
 
 std::string FitProblem::no_jacobian_reason() const {
@@ -217,7 +218,7 @@ std::string FitProblem::no_jacobian_reason() const {
 }
 
 std::string FitProblem::parameter_unit(size_t j) const {
-  if (!est_map_.at(j).is_model) return "ms";
+  if (!est_map_.at(j).is_model) return est_map_[j].unit;
   return model_.parameters().at(est_map_[j].model_indices.front()).unit;
 }
 
@@ -256,10 +257,12 @@ FitProblem::Run FitProblem::run(const double* x, bool with_sens) const {
     R.offsets.push_back(off);
     for (double t : targets_.kinematics[i].data.time_ms) {
       if (t + off < 0)
-        throw Error("time offset " + fmt(off) + " ms moves the sample at " + fmt(t) + " ms before the start of the simulation");
+        throw Error("time offset " + format_g(off) + " ms moves the sample at " + format_g(t) + " ms before the start of the simulation");
       times.push_back(t + off);
     }
   }
+  for (const auto& t : targets_.step_cycles)  // dense outputs over the analysed steps
+    for (double s = settings_.discard_ms; s < t_end; s += t.sample_ms) times.push_back(s);
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end()), times.end());
   R.out_times = times;
@@ -271,7 +274,7 @@ FitProblem::Run FitProblem::run(const double* x, bool with_sens) const {
   }
   solver::Simulator sim(model_, settings_.solver);
   std::vector<solver::RootSpec> roots;
-  if (!targets_.features.empty()) roots = features::feature_roots(model_, R.p);
+  if (!targets_.features.empty() || !targets_.step_cycles.empty()) roots = features::feature_roots(model_, R.p);
   R.res = sim.run(R.p, times, roots, with_sens ? sens_params_ : std::vector<size_t>{});
   features::check_joint_ranges(model_, R.res);  // a run beyond them is a failed evaluation
   if (R.res.t.size() != times.size()) throw SolverError("internal: simulation returned too few outputs");
@@ -381,6 +384,7 @@ bool FitProblem::evaluate(const double* x, double* r, double* J, std::string* er
         }
       }
     }
+    row = step_cycle_rows(R.res, x, sens, row, r, dth);
     if (row != m) throw Error("internal: residual count mismatch");
     for (size_t q = 0; q < m; ++q)
       if (!std::isfinite(r[q])) throw Error("non-finite residual '" + labels_[q] + "'");
@@ -454,6 +458,7 @@ void FitProblem::write_model_output(io::H5Writer& out, const double* x, bool usa
       out.write("/fit/model" + suffix + "/" + comps[i].channels[c], comps[i].model_deg[c], "deg");
     }
   }
+  if (!targets_.step_cycles.empty()) write_step_cycles(out, run(x, false).res, x);
   solver::SolveResult tr = simulate(x, output_dt_ms);
   io::write_trajectory(out, model_, tr);
   io::write_parameters(out, model_, model_parameters(x));

@@ -4,6 +4,7 @@
 // with forward sensitivities of the estimated parameters and returns the weighted residuals
 // and their exact Jacobian with respect to the scaled parameters x. Cost = 1/2 sum r^2.
 #include <atomic>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
@@ -30,7 +31,8 @@ class FitProblem : public ResidualProblem {
   // `parameters` lists every parameter the fit touches; fixed ones (estimate = false) are
   // set to their nominal value. Throws Error for unknown names, parameters whose forward
   // sensitivities would be inexact (they move a switch time or the initial state), unknown
-  // features or channels, and problems without targets.
+  // features or channels, and problems without targets. Offsets (kinematic time offsets in ms,
+  // observable offsets in deg) are estimates that are no model parameter.
   FitProblem(const model::OdeModel& model, std::vector<FitParameter> parameters, Targets targets,
              ProblemSettings settings);
 
@@ -78,13 +80,18 @@ class FitProblem : public ResidualProblem {
   void check_parameters(const std::set<std::string>& offset_ids);
   void map_estimates(const std::set<std::string>& offset_ids);
   void label_targets();
+  // Recording step cycles (fit_problem_steps.cpp): validate and label; residual rows; /fit/steps.
+  void label_step_cycles();
+  size_t step_cycle_rows(const solver::SolveResult& res, const double* x, bool sens, size_t row, double* r, std::vector<double>& dth) const;
+  void write_step_cycles(io::H5Writer& out, const solver::SolveResult& res, const double* x) const;
+  double offset_value(long est, double fixed, const double* x) const { return est >= 0 ? x[est] : fixed; }
 
   const model::OdeModel& model_;
   Targets targets_;
   ProblemSettings settings_;
   std::vector<double> base_p_;
   // Per estimated parameter: model parameter index, or kinematic-target offset (kind).
-  struct EstMap { bool is_model; std::vector<size_t> model_indices, sens_columns; };
+  struct EstMap { bool is_model; std::vector<size_t> model_indices, sens_columns; std::string unit; };
   std::vector<EstMap> est_map_;
   std::vector<size_t> sens_params_;
   // Per kinematic target: index into est_ (or -1) of its offset and the fixed offset value.
@@ -92,6 +99,14 @@ class FitProblem : public ResidualProblem {
   std::vector<double> offset_fixed_;
   std::vector<size_t> switch_channel_, kin_channel_base_;
   std::vector<std::vector<size_t>> kin_channels_;  // per kinematic target: model angle channel per data channel
+  // Per step-cycle target, per observable: model angle channel, data channel, offset (est or fixed).
+  struct StepCycleMap {
+    std::vector<size_t> model_channel, data_channel;
+    std::vector<long> offset_est;
+    std::vector<double> offset_fixed;
+  };
+  std::vector<StepCycleMap> step_maps_;
+  std::map<std::string, std::string> offset_units_;  // non-model estimates: id -> unit
   std::string value_only_feature_;                 // first target without gradients (empty: none)
   mutable std::atomic<long> evaluations_{0}, jacobian_evaluations_{0};
 };

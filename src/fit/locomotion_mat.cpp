@@ -166,7 +166,8 @@ std::vector<features::Stance> read_stances(const Reader& r, matvar_t* contact, c
     const double first = std::isfinite(td) ? td : lo;
     if (std::isfinite(first) && first < last) r.fail(row, "frames not in time order (contact frames must increase)");
     last = std::isfinite(lo) ? lo : (std::isfinite(td) ? td : last);
-    auto ms = [&](double frame) { return (frame - 1) / rate * 1000.0; };
+    // The event lies between the frame before and the frame given: its time is taken halfway.
+    auto ms = [&](double frame) { return (frame - 1.5) / rate * 1000.0; };
     s.push_back({std::isfinite(td) && td > 1 ? ms(td) : nan, std::isfinite(lo) && lo < static_cast<double>(n) ? ms(lo) : nan});
   }
   return s;

@@ -8,7 +8,8 @@
 //    lab's angle conventions (a fit maps them to the model's through observables);
 //  - contact.<leg>.time: one row per stance, [touchdown, lift-off] frame (1-based). A
 //    touchdown at the first frame or a lift-off at the last is the recording's edge, not an
-//    event, and is stored as NaN.
+//    event, and is stored as NaN. A touchdown (lift-off) frame is the first frame in (out of)
+//    contact, so the event lies after the frame before it: its time is taken halfway between.
 // Every structural surprise (no such variable or field, a wrong shape or class, contact
 // frames out of range or out of order, a channel without a finite sample) throws Error
 // "<file>: <field>: ..." in one line; nothing is guessed.

@@ -5,6 +5,9 @@
 //  - SwitchCondition: conditions (2.42) of Section 2.3.5: at the switch time T_sw the angle
 //    equals the extremal angle with zero velocity (and zero acceleration, i.e. the springs
 //    balance there); r = (angle - angle_deg)/tol, velocity/tol, acceleration/tol.
+//  - StepCycleTarget: a recording's step cycles (docs/recordings.md), compared with the model's
+//    step cycle of one leg: per observable and phase bin r = (sign model + offset - data) / sigma,
+//    and the period and duty factor over their sigmas.
 //  - KinematicTarget: a recorded angle trajectory, r_k = (model(t_k + offset) - data_k) / sigma,
 //    with an optional time offset that is itself a fitted parameter.
 #include <string>
@@ -40,11 +43,33 @@ struct KinematicTarget {
   std::string file;  // the recording read
 };
 
+// A recorded channel as a model output (PEtab's observable): data = sign * model + offset (deg).
+struct Observable {
+  std::string data_channel;      // "L2.fti"
+  std::string model_channel;     // "middle.fti"
+  double sign = 1;               // +1 or -1
+  std::string offset_parameter;  // a fit parameter (deg, lin scale); empty: offset_deg, fixed
+  double offset_deg = 0;
+  double sigma_deg = 0;          // > 0: the noise; 0: the recording's step-to-step SD per bin
+  std::string origin;
+};
+
+struct StepCycleTarget {
+  features::StepCycles data;  // the recording's summary
+  std::string leg, model_leg;  // "L2", "middle"
+  std::vector<Observable> observables;
+  double period_sigma_ms = 0, duty_factor_sigma = 0;  // 0: the recording's step-to-step SD
+  double sigma_floor_deg = 0.5;  // lower bound of a per-bin SD taken from the recording
+  double sample_ms = 2;          // spacing of the model outputs the profiles interpolate
+  std::string origin, file;
+};
+
 struct Targets {
   std::vector<FeatureTarget> features;
   std::vector<SwitchCondition> switches;
   std::vector<KinematicTarget> kinematics;
-  bool empty() const { return features.empty() && switches.empty() && kinematics.empty(); }
+  std::vector<StepCycleTarget> step_cycles;
+  bool empty() const { return features.empty() && switches.empty() && kinematics.empty() && step_cycles.empty(); }
 };
 
 }  // namespace phasmid::fit

@@ -35,6 +35,40 @@ json kinematics(const H5Reader& r, json& out, const std::vector<double>& t, std:
   return arr;
 }
 
+// /fit/steps/<i>: the recording's mean and SD per phase bin against the model's profile, per
+// observable, with the periods and duty factors (docs/recordings.md).
+json step_cycles(const H5Reader& r, json& out) {
+  json arr = json::array();
+  for (const auto& i : r.children("/fit/steps")) {
+    const std::string g = "/fit/steps/" + i;
+    if (!is_numeric_dataset(r, g + "/phase") || !r.is_group(g + "/data_mean")) {
+      note_ignored(out, g);
+      continue;
+    }
+    const std::vector<double> phase = r.read_doubles(g + "/phase");
+    json s;
+    s["phase"] = nums(phase);
+    for (const char* a : {"leg", "model_leg", "file"})
+      s[a] = r.has_attribute(g, a) ? json(r.read_string_attribute(g, a)) : json(nullptr);
+    for (const char* a : {"data_period_ms", "model_period_ms", "data_duty_factor", "model_duty_factor", "data_steps", "model_steps"})
+      s[a] = r.has_attribute(g, a) ? json(r.read_double_attribute(g, a)) : json(nullptr);
+    s["channels"] = json::array();
+    for (const auto& c : r.children(g + "/data_mean")) {
+      json ch{{"name", c}};
+      bool ok = true;
+      for (const char* part : {"data_mean", "data_sd", "model"}) {
+        const std::string p = g + "/" + part + "/" + c;
+        ok = ok && is_numeric_dataset(r, p) && n_elements(r.dims(p)) == phase.size();
+        if (ok) ch[part] = nums(r.read_doubles(p));
+      }
+      if (ok) s["channels"].push_back(ch);
+      else note_ignored(out, g + "/.../" + c);
+    }
+    arr.push_back(s);
+  }
+  return arr;
+}
+
 }  // namespace
 
 void extract_fit(const H5Reader& r, json& out, std::size_t max_points) {
@@ -62,6 +96,7 @@ void extract_fit(const H5Reader& r, json& out, std::size_t max_points) {
     f["time_units"] = units_of(r, "/fit/data/time");
     f["kinematics"] = kinematics(r, out, t, max_points);
   }
+  f["step_cycles"] = r.is_group("/fit/steps") ? step_cycles(r, out) : json::array();
   out["fit"] = f;
 }
 

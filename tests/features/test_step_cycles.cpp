@@ -68,6 +68,7 @@ TEST(StepCycles, RecoversProfileOffsetsPeriodAndDutyFactor) {
   EXPECT_NEAR(c.duty_factor, 0.7, 1e-12);
   EXPECT_NEAR(c.duty_factor_sd, 0, 1e-12);
   EXPECT_NEAR(c.period_sd_ms, sd({850, 800, 850, 850, 850}), 1e-9);
+  EXPECT_NEAR(c.mean_period_ms, 840, 1e-9);
   const std::vector<double> kept_off(off.begin() + 1, off.begin() + 6);
   double mean_off = 0;
   for (double o : kept_off) mean_off += o / 5;
@@ -120,10 +121,10 @@ TEST(StepCycles, StancesFromAContactSignal) {
   const std::vector<Stance> s = features::stances_from_contact(t, {1, 1, 0, 0, 1, 1, 0, 1});
   ASSERT_EQ(s.size(), 3u);
   EXPECT_TRUE(std::isnan(s[0].touchdown_ms));  // in contact at the first sample: censored
-  EXPECT_EQ(s[0].liftoff_ms, 10);
-  EXPECT_EQ(s[1].touchdown_ms, 20);
-  EXPECT_EQ(s[1].liftoff_ms, 30);
-  EXPECT_EQ(s[2].touchdown_ms, 35);
+  EXPECT_EQ(s[0].liftoff_ms, 7.5);  // halfway between the samples at 5 and 10 ms
+  EXPECT_EQ(s[1].touchdown_ms, 17.5);
+  EXPECT_EQ(s[1].liftoff_ms, 27.5);
+  EXPECT_EQ(s[2].touchdown_ms, 32.5);
   EXPECT_TRUE(std::isnan(s[2].liftoff_ms));  // in contact at the last sample: censored
 }
 

@@ -1,0 +1,105 @@
+// [[fit.recording]]: recordings of walking animals as fit targets, compared step cycle by step
+// cycle through observables (docs/recordings.md "Fitting the model to a recording").
+#include "common/error.hpp"
+#include "config/fit_section.hpp"
+#include "config/toml_util.hpp"
+#include "fit/kinematic_data.hpp"
+
+namespace phasmid::fit {
+namespace {
+using config::check_keys;
+using config::number;
+using config::text;
+using config::where;
+
+// The model's leg of a recorded leg: L1/R1 front, L2/R2 middle, L3/R3 hind.
+std::string default_model_leg(const std::string& leg) {
+  if (leg.size() == 2 && (leg[0] == 'L' || leg[0] == 'R')) {
+    if (leg[1] == '1') return "front";
+    if (leg[1] == '2') return "middle";
+    if (leg[1] == '3') return "hind";
+  }
+  return leg;
+}
+
+Observable observable(const config::Config& cfg, const toml::table& t) {
+  check_keys(cfg, t, "fit.recording.observable", {"data", "model", "sign", "offset", "sigma_deg"});
+  Observable o;
+  o.origin = where(cfg, t);
+  for (const char* req : {"data", "model"})
+    if (!t.get(req)) throw Error(o.origin + ": [[fit.recording.observable]] needs '" + req + "'");
+  o.data_channel = text(cfg, *t.get("data"), "data");
+  o.model_channel = text(cfg, *t.get("model"), "model");
+  o.origin = where(cfg, *t.get("data"));
+  if (auto n = t.get("sign")) o.sign = number(cfg, *n, "sign");
+  if (auto n = t.get("offset")) {
+    if (n->is_string()) o.offset_parameter = text(cfg, *n, "offset");
+    else o.offset_deg = number(cfg, *n, "offset");
+  }
+  if (auto n = t.get("sigma_deg")) {
+    o.sigma_deg = number(cfg, *n, "sigma_deg");
+    if (o.sigma_deg < 0) throw Error(where(cfg, *n) + ": sigma_deg must be >= 0 (0: the recording's step-to-step SD)");
+  }
+  return o;
+}
+
+// The step-cycle summary of the recording's leg (docs/recordings.md).
+features::StepCycles summarise(const KinematicData& d, const std::string& leg, const features::StepCycleOptions& o,
+                               const std::string& origin) {
+  auto it = d.stances.find(leg);
+  if (it == d.stances.end()) throw Error(origin + ": " + d.source + " has no contact data for leg '" + leg + "'");
+  std::vector<std::string> channels;
+  std::vector<std::vector<double>> samples;
+  for (size_t c = 0; c < d.channels.size(); ++c)
+    if (d.channels[c].compare(0, leg.size() + 1, leg + ".") == 0)
+      channels.push_back(d.channels[c]), samples.push_back(d.angles_deg[c]);
+  return features::step_cycles(d.time_ms, channels, samples, it->second, o, d.source + ": " + leg);
+}
+
+StepCycleTarget recording_target(const config::Config& cfg, const toml::table& t, const std::string& file_override,
+                                 double frame_rate_hz) {
+  check_keys(cfg, t, "fit.recording",
+             {"file", "leg", "model_leg", "bins", "discard_steps", "max_period_deviation", "period_sigma_ms",
+              "duty_factor_sigma", "sigma_floor_deg", "sample_ms", "frame_rate_hz", "observable", "set"});
+  StepCycleTarget s;
+  s.origin = where(cfg, t);
+  if (auto n = t.get("file")) s.file = resolve_path(cfg, text(cfg, *n, "file"));
+  if (!file_override.empty()) s.file = file_override;
+  if (s.file.empty()) throw Error(s.origin + ": [[fit.recording]] needs file (or give --data)");
+  if (!t.get("leg")) throw Error(s.origin + ": [[fit.recording]] needs leg (the recording's leg, e.g. \"L2\")");
+  s.leg = text(cfg, *t.get("leg"), "leg");
+  s.model_leg = t.get("model_leg") ? text(cfg, *t.get("model_leg"), "model_leg") : default_model_leg(s.leg);
+  features::StepCycleOptions o;
+  if (auto n = t.get("bins")) o.bins = static_cast<int>(config::number_in(cfg, *n, "bins", 2, 1000));
+  if (auto n = t.get("discard_steps")) o.discard_steps = static_cast<int>(config::number_in(cfg, *n, "discard_steps", 0, 1e6));
+  if (auto n = t.get("max_period_deviation")) o.max_period_deviation = number(cfg, *n, "max_period_deviation");
+  if (const std::string why = o.invalid_reason(); !why.empty()) throw Error(s.origin + ": " + why);
+  if (auto n = t.get("period_sigma_ms")) s.period_sigma_ms = config::number_in(cfg, *n, "period_sigma_ms", 0, 1e9);
+  if (auto n = t.get("duty_factor_sigma")) s.duty_factor_sigma = config::number_in(cfg, *n, "duty_factor_sigma", 0, 1);
+  if (auto n = t.get("sigma_floor_deg")) s.sigma_floor_deg = config::number_in(cfg, *n, "sigma_floor_deg", 0, 1e3);
+  if (auto n = t.get("sample_ms")) s.sample_ms = config::number_in(cfg, *n, "sample_ms", 0.01, 100);
+  if (auto n = t.get("frame_rate_hz")) frame_rate_hz = number(cfg, *n, "frame_rate_hz");
+  for (const toml::table* ot : fit_tables(cfg, t, "observable")) s.observables.push_back(observable(cfg, *ot));
+  if (s.observables.empty())
+    throw Error(s.origin + ": [[fit.recording]] needs at least one [[fit.recording.observable]] (data = \"" + s.leg +
+                ".fti\", model = \"" + s.model_leg + ".fti\", sign, offset)");
+  const KinematicData d = read_recording(s.file, frame_rate_hz, {s.leg});
+  s.data = summarise(d, s.leg, o, s.origin);
+  return s;
+}
+
+}  // namespace
+
+void load_recording_targets(const config::Config& cfg, const toml::table& fit, const FitOverrides& ov, FitSpec& spec) {
+  const auto tables = fit_tables(cfg, fit, "recording");
+  const bool override_file = !ov.data.empty();
+  if (override_file && tables.size() > 1)
+    throw Error("--data: the config lists " + std::to_string(tables.size()) + " recordings; edit the config instead");
+  for (const toml::table* t : tables) {
+    if (!in_target_set(cfg, *t, spec.target_set)) continue;
+    spec.targets.step_cycles.push_back(recording_target(cfg, *t, override_file ? ov.data : "", 0));
+    spec.inputs.push_back(spec.targets.step_cycles.back().file);
+  }
+}
+
+}  // namespace phasmid::fit

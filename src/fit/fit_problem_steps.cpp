@@ -1,0 +1,153 @@
+// FitProblem's step-cycle targets (fit/targets.hpp, docs/recordings.md): a recording's mean
+// angle per phase bin, its median period and duty factor against the model's step cycle of one
+// leg (features/model_step_cycle.hpp), through affine observables.
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.hpp"
+#include "common/format.hpp"
+#include "features/model_step_cycle.hpp"
+#include "fit/fit_problem.hpp"
+#include "io/h5_file.hpp"
+
+namespace phasmid::fit {
+namespace {
+
+
+size_t index_of(const std::vector<std::string>& names, const std::string& name, const std::string& what) {
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return i;
+  std::string have;
+  for (auto& n : names) have += (have.empty() ? "" : ", ") + n;
+  throw Error(what + " (it has: " + have + ")");
+}
+
+// The noise of bin k of data channel c: the observable's own, else the recording's SD (floored).
+double bin_sigma(const StepCycleTarget& t, const Observable& o, size_t c, size_t k) {
+  return o.sigma_deg > 0 ? o.sigma_deg : std::max(t.data.sd_deg[c][k], t.sigma_floor_deg);
+}
+double period_sigma(const StepCycleTarget& t) { return t.period_sigma_ms > 0 ? t.period_sigma_ms : t.data.period_sd_ms; }
+double duty_sigma(const StepCycleTarget& t) { return t.duty_factor_sigma > 0 ? t.duty_factor_sigma : t.data.duty_factor_sd; }
+
+}  // namespace
+
+void FitProblem::label_step_cycles() {
+  std::vector<std::string> model_channels;
+  for (const auto& a : model_.angles()) model_channels.push_back(a.leg + "." + a.joint);
+  for (const auto& t : targets_.step_cycles) {
+    if (!(settings_.t_end_ms > settings_.discard_ms))
+      throw Error(t.origin + ": recording targets need t_end_ms above discard_ms in [fit] (the model's steps lie between)");
+    if (!model_.contact_leg(t.model_leg)) throw Error(t.origin + ": the model has no ground contact for leg '" + t.model_leg + "'");
+    if (!(t.sample_ms > 0)) throw Error(t.origin + ": sample_ms must be > 0");
+    if (!(period_sigma(t) > 0) || !(duty_sigma(t) > 0))
+      throw Error(t.origin + ": the recording's period and duty factor have no step-to-step SD (" +
+                  std::to_string(t.data.kept()) + " step kept); give period_sigma_ms and duty_factor_sigma");
+    StepCycleMap m;
+    for (const auto& o : t.observables) {
+      m.model_channel.push_back(index_of(model_channels, o.model_channel, o.origin + ": the model has no angle '" + o.model_channel + "'"));
+      if (model_.angles()[m.model_channel.back()].leg != t.model_leg)
+        throw Error(o.origin + ": '" + o.model_channel + "' is not an angle of the model's leg '" + t.model_leg + "'");
+      m.data_channel.push_back(index_of(t.data.channels, o.data_channel, o.origin + ": the recording has no channel '" + o.data_channel + "'"));
+      if (o.sign != 1 && o.sign != -1) throw Error(o.origin + ": sign must be 1 or -1");
+      long est = -1;
+      double fixed = o.offset_deg;
+      if (!o.offset_parameter.empty()) {
+        auto fp = std::find_if(params_.begin(), params_.end(), [&](const FitParameter& p) { return p.id == o.offset_parameter; });
+        if (fp == params_.end()) throw Error(o.origin + ": offset parameter '" + o.offset_parameter + "' is not in the parameter table");
+        fixed = fp->nominal;
+        for (size_t j = 0; j < est_.size(); ++j)
+          if (est_[j].id == o.offset_parameter) est = static_cast<long>(j);
+      }
+      m.offset_est.push_back(est);
+      m.offset_fixed.push_back(fixed);
+      for (size_t k = 0; k < t.data.phase.size(); ++k) {
+        if (!(bin_sigma(t, o, m.data_channel.back(), k) > 0))
+          throw Error(o.origin + ": no noise for '" + o.data_channel + "' (the recording's SD needs two steps; give sigma_deg)");
+        labels_.push_back("steps " + o.data_channel + " @" + format_g(t.data.phase[k]));
+      }
+    }
+    labels_.push_back("steps " + t.leg + " period");
+    labels_.push_back("steps " + t.leg + " duty_factor");
+    step_maps_.push_back(std::move(m));
+  }
+}
+
+size_t FitProblem::step_cycle_rows(const solver::SolveResult& res, const double* x, bool sens, size_t row, double* r,
+                                   std::vector<double>& dth) const {
+  if (targets_.step_cycles.empty()) return row;
+  const size_t n = est_.size();
+  features::FeatureOptions fo = settings_.feature_options;
+  fo.discard_ms = settings_.discard_ms;
+  fo.root_offset = 0;
+  auto model_row = [&](size_t q, const Eigen::VectorXd& g, double factor) {
+    for (size_t j = 0; j < n; ++j)
+      for (size_t c : est_map_[j].sens_columns) dth[q * n + j] += g[static_cast<long>(c)] * factor;
+  };
+  for (size_t i = 0; i < targets_.step_cycles.size(); ++i) {
+    const StepCycleTarget& t = targets_.step_cycles[i];
+    const StepCycleMap& m = step_maps_[i];
+    const features::ModelStepCycle mc = features::model_step_cycle(model_, res, t.model_leg, static_cast<int>(t.data.phase.size()), fo, sens);
+    for (size_t o = 0; o < t.observables.size(); ++o) {
+      const Observable& ob = t.observables[o];
+      const size_t mch = static_cast<size_t>(std::find(mc.channels.begin(), mc.channels.end(), m.model_channel[o]) - mc.channels.begin());
+      const size_t dch = m.data_channel[o];
+      const double off = m.offset_est[o] >= 0 ? x[m.offset_est[o]] : m.offset_fixed[o];
+      for (size_t k = 0; k < t.data.phase.size(); ++k, ++row) {
+        const double s = bin_sigma(t, ob, dch, k);
+        r[row] = (ob.sign * mc.mean_deg[mch][k] + off - t.data.mean_deg[dch][k]) / s;
+        if (dth.empty()) continue;
+        if (sens) model_row(row, mc.dmean_deg[mch][k], ob.sign / s);
+        if (m.offset_est[o] >= 0) dth[row * n + static_cast<size_t>(m.offset_est[o])] = 1 / s;
+      }
+    }
+    r[row] = (mc.period_ms - t.data.mean_period_ms) / period_sigma(t);
+    if (sens && !dth.empty()) model_row(row, mc.dperiod_ms, 1 / period_sigma(t));
+    ++row;
+    r[row] = (mc.duty_factor - t.data.duty_factor) / duty_sigma(t);
+    if (sens && !dth.empty()) model_row(row, mc.dduty_factor, 1 / duty_sigma(t));
+    ++row;
+  }
+  return row;
+}
+
+// /fit/steps/<i>/: the recording's and the model's profiles (through the observables), with
+// the noise per bin, and the periods and duty factors as attributes (docs/hdf5.md).
+void FitProblem::write_step_cycles(io::H5Writer& out, const solver::SolveResult& res, const double* x) const {
+  features::FeatureOptions fo = settings_.feature_options;
+  fo.discard_ms = settings_.discard_ms;
+  for (size_t i = 0; i < targets_.step_cycles.size(); ++i) {
+    const StepCycleTarget& t = targets_.step_cycles[i];
+    const StepCycleMap& m = step_maps_[i];
+    const features::ModelStepCycle mc = features::model_step_cycle(model_, res, t.model_leg, static_cast<int>(t.data.phase.size()), fo, false);
+    const std::string g = "/fit/steps/" + std::to_string(i);
+    out.write(g + "/phase", t.data.phase, "1");
+    for (size_t o = 0; o < t.observables.size(); ++o) {
+      const Observable& ob = t.observables[o];
+      const size_t mch = static_cast<size_t>(std::find(mc.channels.begin(), mc.channels.end(), m.model_channel[o]) - mc.channels.begin());
+      const size_t dch = m.data_channel[o];
+      const double off = m.offset_est[o] >= 0 ? x[m.offset_est[o]] : m.offset_fixed[o];
+      std::vector<double> model, sigma;
+      for (size_t k = 0; k < t.data.phase.size(); ++k) {
+        model.push_back(ob.sign * mc.mean_deg[mch][k] + off);
+        sigma.push_back(bin_sigma(t, ob, dch, k));
+      }
+      out.write(g + "/data_mean/" + ob.data_channel, t.data.mean_deg[dch], "deg");
+      out.write(g + "/data_sd/" + ob.data_channel, t.data.sd_deg[dch], "deg");
+      out.write(g + "/model/" + ob.data_channel, model, "deg");
+      out.write(g + "/sigma/" + ob.data_channel, sigma, "deg");
+      out.set_attribute(g + "/model/" + ob.data_channel, "model_channel", ob.model_channel);
+    }
+    out.set_attribute(g, "file", t.file);
+    out.set_attribute(g, "leg", t.leg);
+    out.set_attribute(g, "model_leg", t.model_leg);
+    out.set_attribute(g, "data_period_ms", t.data.mean_period_ms);
+    out.set_attribute(g, "data_median_period_ms", t.data.median_period_ms);
+    out.set_attribute(g, "model_period_ms", mc.period_ms);
+    out.set_attribute(g, "data_duty_factor", t.data.duty_factor);
+    out.set_attribute(g, "model_duty_factor", mc.duty_factor);
+    out.set_attribute(g, "data_steps", static_cast<double>(t.data.kept()));
+    out.set_attribute(g, "model_steps", static_cast<double>(mc.steps));
+  }
+}
+
+}  // namespace phasmid::fit
