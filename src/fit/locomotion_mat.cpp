@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "common/error.hpp"
+#include "common/format.hpp"
 
 namespace phasmid::fit {
 namespace {
@@ -161,7 +162,7 @@ std::vector<features::Stance> read_stances(const Reader& r, matvar_t* contact, c
     const std::string row = f + " row " + std::to_string(i + 1);
     for (double v : {td, lo})
       if (std::isfinite(v) && (v < 1 || v > static_cast<double>(n) || v != std::floor(v)))
-        r.fail(row, "frame " + std::to_string(v) + " is not a frame number 1.." + std::to_string(n));
+        r.fail(row, "frame " + format_g(v) + " is not a frame number 1.." + std::to_string(n));
     if (std::isfinite(td) && std::isfinite(lo) && lo < td) r.fail(row, "lift-off frame before its touchdown frame");
     const double first = std::isfinite(td) ? td : lo;
     if (std::isfinite(first) && first < last) r.fail(row, "frames not in time order (contact frames must increase)");
@@ -196,10 +197,10 @@ KinematicData read_locomotion_mat(const std::string& path, const std::vector<std
   if (!file.mat) throw Error(path + ": not a MATLAB file (v5 or v7.3)" + (matio_message.empty() ? "" : ": " + matio_message));
   Var experiment = read_variable(file.mat, r, "experiment");
   const double rate = r.scalar(r.field(experiment.get(), "experiment", "FREQUENCY"), "experiment.FREQUENCY");
-  if (!(rate > 0) || !std::isfinite(rate)) r.fail("experiment.FREQUENCY", "frame rate " + std::to_string(rate) + " Hz is not > 0");
+  if (!(rate > 0) || !std::isfinite(rate)) r.fail("experiment.FREQUENCY", "frame rate " + format_g(rate) + " Hz is not > 0");
   const double frames = r.scalar(r.field(experiment.get(), "experiment", "N_FRAMES"), "experiment.N_FRAMES");
   if (!(frames >= 2) || frames != std::floor(frames) || frames > 1e8)
-    r.fail("experiment.N_FRAMES", std::to_string(frames) + " is not a frame count >= 2");
+    r.fail("experiment.N_FRAMES", format_g(frames, 10) + " is not a frame count >= 2");
   const size_t n = static_cast<size_t>(frames);
   KinematicData d;
   d.source = path;
