@@ -23,7 +23,7 @@ std::string default_model_leg(const std::string& leg) {
 }
 
 Observable observable(const config::Config& cfg, const toml::table& t) {
-  check_keys(cfg, t, "fit.recording.observable", {"data", "model", "sign", "offset", "sigma_deg"});
+  check_keys(cfg, t, "fit.recording.observable", {"data", "model", "sign", "offset", "scale", "sigma_deg"});
   Observable o;
   o.origin = where(cfg, t);
   for (const char* req : {"data", "model"})
@@ -35,6 +35,10 @@ Observable observable(const config::Config& cfg, const toml::table& t) {
   if (auto n = t.get("offset")) {
     if (n->is_string()) o.offset_parameter = text(cfg, *n, "offset");
     else o.offset_deg = number(cfg, *n, "offset");
+  }
+  if (auto n = t.get("scale")) {
+    if (n->is_string()) o.scale_parameter = text(cfg, *n, "scale");
+    else o.scale = number(cfg, *n, "scale");
   }
   if (auto n = t.get("sigma_deg")) {
     o.sigma_deg = number(cfg, *n, "sigma_deg");

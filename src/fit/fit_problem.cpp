@@ -80,12 +80,15 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
     if (id.empty()) return;
     if (ps.contains(id)) throw Error(origin + ": " + what + " parameter '" + id + "' is also a model parameter");
     auto [it, fresh] = offset_units_.emplace(id, unit);
-    if (!fresh && it->second != unit) throw Error(origin + ": parameter '" + id + "' is a time offset (ms) and an angle offset (deg)");
+    if (!fresh && it->second != unit) throw Error(origin + ": parameter '" + id + "' has two roles (" + it->second + " and " + unit + ")");
     offset_ids.insert(id);
   };
   for (auto& k : targets_.kinematics) add_offset(k.time_offset_parameter, "ms", k.origin, "time offset");
   for (auto& t : targets_.step_cycles)
-    for (auto& o : t.observables) add_offset(o.offset_parameter, "deg", o.origin, "offset");
+    for (auto& o : t.observables) {
+      add_offset(o.offset_parameter, "deg", o.origin, "offset");
+      add_offset(o.scale_parameter, "1", o.origin, "scale");
+    }
   check_parameters(offset_ids);
   map_estimates(offset_ids);
   if (est_.empty()) throw Error("no parameter is estimated (set estimate = 1 for at least one)");
@@ -106,7 +109,7 @@ void FitProblem::check_parameters(const std::set<std::string>& offset_ids) {
     if (!seen.insert(fp.id).second) throw Error(w + "parameter '" + fp.id + "' given twice");
     validate(fp);
     if (offset_ids.count(fp.id)) {
-      if (fp.scale != Scale::Lin) throw Error(w + "offset '" + fp.id + "' must use parameterScale lin");
+      if (fp.scale != Scale::Lin) throw Error(w + "'" + fp.id + "' (an offset or observable scale) must use parameterScale lin");
       continue;
     }
     std::vector<size_t> ks = match_parameters(ps, fp.id, w);

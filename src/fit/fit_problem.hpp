@@ -8,9 +8,11 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "features/features.hpp"
+#include "features/model_step_cycle.hpp"
 #include "fit/parameter_table.hpp"
 #include "fit/residual_problem.hpp"
 #include "fit/targets.hpp"
@@ -85,6 +87,8 @@ class FitProblem : public ResidualProblem {
   size_t step_cycle_rows(const solver::SolveResult& res, const double* x, bool sens, size_t row, double* r, std::vector<double>& dth) const;
   void write_step_cycles(io::H5Writer& out, const solver::SolveResult& res, const double* x) const;
   double offset_value(long est, double fixed, const double* x) const { return est >= 0 ? x[est] : fixed; }
+  std::pair<long, double> observable_parameter(const std::string& id, double value, const std::string& origin,
+                                               const char* what) const;
 
   const model::OdeModel& model_;
   Targets targets_;
@@ -99,13 +103,16 @@ class FitProblem : public ResidualProblem {
   std::vector<double> offset_fixed_;
   std::vector<size_t> switch_channel_, kin_channel_base_;
   std::vector<std::vector<size_t>> kin_channels_;  // per kinematic target: model angle channel per data channel
-  // Per step-cycle target, per observable: model angle channel, data channel, offset (est or fixed).
+  // Per step-cycle target, per observable: model angle channel, data channel, offset and scale
+  // (index of the estimate, or -1 and the fixed value).
   struct StepCycleMap {
     std::vector<size_t> model_channel, data_channel;
-    std::vector<long> offset_est;
-    std::vector<double> offset_fixed;
+    std::vector<long> offset_est, scale_est;
+    std::vector<double> offset_fixed, scale_fixed;
   };
   std::vector<StepCycleMap> step_maps_;
+  std::tuple<size_t, size_t, double, double> observable_at(const features::ModelStepCycle& mc, const StepCycleMap& m,
+                                                           size_t o, const double* x) const;
   std::map<std::string, std::string> offset_units_;  // non-model estimates: id -> unit
   std::string value_only_feature_;                 // first target without gradients (empty: none)
   mutable std::atomic<long> evaluations_{0}, jacobian_evaluations_{0};

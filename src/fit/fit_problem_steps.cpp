@@ -3,6 +3,7 @@
 // leg (features/model_step_cycle.hpp), through affine observables.
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "common/error.hpp"
 #include "common/format.hpp"
@@ -31,6 +32,26 @@ double duty_sigma(const StepCycleTarget& t) { return t.duty_factor_sigma > 0 ? t
 
 }  // namespace
 
+// An observable's offset or scale: (index of its estimate or -1, its fixed or starting value).
+std::pair<long, double> FitProblem::observable_parameter(const std::string& id, double value, const std::string& origin,
+                                                         const char* what) const {
+  if (id.empty()) return {-1, value};
+  auto fp = std::find_if(params_.begin(), params_.end(), [&](const FitParameter& p) { return p.id == id; });
+  if (fp == params_.end()) throw Error(origin + ": " + what + " parameter '" + id + "' is not in the parameter table");
+  for (size_t j = 0; j < est_.size(); ++j)
+    if (est_[j].id == id) return {static_cast<long>(j), fp->nominal};
+  return {-1, fp->nominal};
+}
+
+// Observable o of a target at estimates x: the model's profile index, the recording's channel,
+// the offset and the scale.
+std::tuple<size_t, size_t, double, double> FitProblem::observable_at(const features::ModelStepCycle& mc, const StepCycleMap& m,
+                                                                     size_t o, const double* x) const {
+  const auto mch = std::find(mc.channels.begin(), mc.channels.end(), m.model_channel[o]) - mc.channels.begin();
+  return {static_cast<size_t>(mch), m.data_channel[o], offset_value(m.offset_est[o], m.offset_fixed[o], x),
+          offset_value(m.scale_est[o], m.scale_fixed[o], x)};
+}
+
 void FitProblem::label_step_cycles() {
   std::vector<std::string> model_channels;
   for (const auto& a : model_.angles()) model_channels.push_back(a.leg + "." + a.joint);
@@ -49,17 +70,12 @@ void FitProblem::label_step_cycles() {
         throw Error(o.origin + ": '" + o.model_channel + "' is not an angle of the model's leg '" + t.model_leg + "'");
       m.data_channel.push_back(index_of(t.data.channels, o.data_channel, o.origin + ": the recording has no channel '" + o.data_channel + "'"));
       if (o.sign != 1 && o.sign != -1) throw Error(o.origin + ": sign must be 1 or -1");
-      long est = -1;
-      double fixed = o.offset_deg;
-      if (!o.offset_parameter.empty()) {
-        auto fp = std::find_if(params_.begin(), params_.end(), [&](const FitParameter& p) { return p.id == o.offset_parameter; });
-        if (fp == params_.end()) throw Error(o.origin + ": offset parameter '" + o.offset_parameter + "' is not in the parameter table");
-        fixed = fp->nominal;
-        for (size_t j = 0; j < est_.size(); ++j)
-          if (est_[j].id == o.offset_parameter) est = static_cast<long>(j);
-      }
-      m.offset_est.push_back(est);
-      m.offset_fixed.push_back(fixed);
+      const auto [off_est, off_fixed] = observable_parameter(o.offset_parameter, o.offset_deg, o.origin, "offset");
+      const auto [scale_est, scale_fixed] = observable_parameter(o.scale_parameter, o.scale, o.origin, "scale");
+      m.offset_est.push_back(off_est);
+      m.offset_fixed.push_back(off_fixed);
+      m.scale_est.push_back(scale_est);
+      m.scale_fixed.push_back(scale_fixed);
       for (size_t k = 0; k < t.data.phase.size(); ++k) {
         if (!(bin_sigma(t, o, m.data_channel.back(), k) > 0))
           throw Error(o.origin + ": no noise for '" + o.data_channel + "' (the recording's SD needs two steps; give sigma_deg)");
@@ -89,15 +105,14 @@ size_t FitProblem::step_cycle_rows(const solver::SolveResult& res, const double*
     const features::ModelStepCycle mc = features::model_step_cycle(model_, res, t.model_leg, static_cast<int>(t.data.phase.size()), fo, sens);
     for (size_t o = 0; o < t.observables.size(); ++o) {
       const Observable& ob = t.observables[o];
-      const size_t mch = static_cast<size_t>(std::find(mc.channels.begin(), mc.channels.end(), m.model_channel[o]) - mc.channels.begin());
-      const size_t dch = m.data_channel[o];
-      const double off = m.offset_est[o] >= 0 ? x[m.offset_est[o]] : m.offset_fixed[o];
+      const auto [mch, dch, off, scale] = observable_at(mc, m, o, x);
       for (size_t k = 0; k < t.data.phase.size(); ++k, ++row) {
         const double s = bin_sigma(t, ob, dch, k);
-        r[row] = (ob.sign * mc.mean_deg[mch][k] + off - t.data.mean_deg[dch][k]) / s;
+        r[row] = (ob.sign * scale * mc.mean_deg[mch][k] + off - t.data.mean_deg[dch][k]) / s;
         if (dth.empty()) continue;
-        if (sens) model_row(row, mc.dmean_deg[mch][k], ob.sign / s);
+        if (sens) model_row(row, mc.dmean_deg[mch][k], ob.sign * scale / s);
         if (m.offset_est[o] >= 0) dth[row * n + static_cast<size_t>(m.offset_est[o])] = 1 / s;
+        if (m.scale_est[o] >= 0) dth[row * n + static_cast<size_t>(m.scale_est[o])] = ob.sign * mc.mean_deg[mch][k] / s;
       }
     }
     r[row] = (mc.period_ms - t.data.mean_period_ms) / period_sigma(t);
@@ -123,12 +138,10 @@ void FitProblem::write_step_cycles(io::H5Writer& out, const solver::SolveResult&
     out.write(g + "/phase", t.data.phase, "1");
     for (size_t o = 0; o < t.observables.size(); ++o) {
       const Observable& ob = t.observables[o];
-      const size_t mch = static_cast<size_t>(std::find(mc.channels.begin(), mc.channels.end(), m.model_channel[o]) - mc.channels.begin());
-      const size_t dch = m.data_channel[o];
-      const double off = m.offset_est[o] >= 0 ? x[m.offset_est[o]] : m.offset_fixed[o];
+      const auto [mch, dch, off, scale] = observable_at(mc, m, o, x);
       std::vector<double> model, sigma;
       for (size_t k = 0; k < t.data.phase.size(); ++k) {
-        model.push_back(ob.sign * mc.mean_deg[mch][k] + off);
+        model.push_back(ob.sign * scale * mc.mean_deg[mch][k] + off);
         sigma.push_back(bin_sigma(t, ob, dch, k));
       }
       out.write(g + "/data_mean/" + ob.data_channel, t.data.mean_deg[dch], "deg");

@@ -43,13 +43,16 @@ struct KinematicTarget {
   std::string file;  // the recording read
 };
 
-// A recorded channel as a model output (PEtab's observable): data = sign * model + offset (deg).
+// A recorded channel as a model output (PEtab's observable): data = sign * scale * model + offset
+// (deg).
 struct Observable {
   std::string data_channel;      // "L2.fti"
   std::string model_channel;     // "middle.fti"
   double sign = 1;               // +1 or -1
   std::string offset_parameter;  // a fit parameter (deg, lin scale); empty: offset_deg, fixed
   double offset_deg = 0;
+  std::string scale_parameter;   // a fit parameter (1, lin scale); empty: scale, fixed
+  double scale = 1;
   double sigma_deg = 0;          // > 0: the noise; 0: the recording's step-to-step SD per bin
   std::string origin;
 };

@@ -54,6 +54,7 @@ fit::StepCycleTarget target() {
     o.origin = "test";
     if (j == 0) o.offset_parameter = "thc_offset";
     else o.offset_deg = 10;
+    if (j == 2) o.scale_parameter = "fti_scale";
     t.observables.push_back(o);
   }
   return t;
@@ -63,7 +64,8 @@ std::vector<fit::FitParameter> parameters() {
   return {{"middle.thc.cpg.epsilon", fit::Scale::Log10, 0.001, 0.004, 0.0019, true, "test"},
           {"middle.ctr.cpg_lev.g_app", fit::Scale::Lin, 0.2, 0.5, 0.34, true, "test"},
           {"middle.fti.cpg_ext.g_app", fit::Scale::Lin, 0.1, 0.4, 0.209, true, "test"},
-          {"thc_offset", fit::Scale::Lin, -100, 100, -70, true, "test"}};
+          {"thc_offset", fit::Scale::Lin, -100, 100, -70, true, "test"},
+          {"fti_scale", fit::Scale::Lin, 0.5, 1.5, 0.8, true, "test"}};
 }
 
 // Max over residuals of |J - J_fd(h)| / max|column of J_fd(h)| for estimated parameter j.
@@ -112,8 +114,13 @@ TEST(FitRecording, StepCycleJacobianMatchesConvergedFiniteDifferences) {
   }
   EXPECT_GE(compared, entries * 8 / 10) << compared << " of " << entries << " entries converged";
   EXPECT_GE(compared, 100u);
-  // The offset enters every bin of its observable with weight 1/sigma and nothing else.
-  for (size_t q = 0; q < m; ++q) EXPECT_DOUBLE_EQ(J[q * n + 3], q < 20 ? 0.5 : 0.0) << p.residual_labels()[q];
+  // The offset enters every bin of its observable with weight 1/sigma and nothing else; the
+  // scale, sign * model / sigma (r = (sign scale model + offset - data) / sigma).
+  for (size_t q = 0; q < m; ++q) {
+    EXPECT_DOUBLE_EQ(J[q * n + 3], q < 20 ? 0.5 : 0.0) << p.residual_labels()[q];
+    if (q >= 40 && q < 60) EXPECT_NEAR(J[q * n + 4], -((10.0 - 2.0 * r[q]) / 0.8) / 2.0, 1e-9) << p.residual_labels()[q];
+    else EXPECT_EQ(J[q * n + 4], 0.0) << p.residual_labels()[q];
+  }
 }
 
 TEST(FitRecording, RefusesWhatItCannotCompare) {
@@ -132,6 +139,8 @@ TEST(FitRecording, RefusesWhatItCannotCompare) {
   EXPECT_EQ(message([](auto& t) { t.observables[1].sign = 2; }), "test: sign must be 1 or -1");
   EXPECT_EQ(message([](auto& t) { t.observables[2].offset_parameter = "nope"; }),
             "test: offset parameter 'nope' is not in the parameter table");
+  EXPECT_EQ(message([](auto& t) { t.observables[1].scale_parameter = "thc_offset"; }),
+            "test: parameter 'thc_offset' has two roles (deg and 1)");
   EXPECT_EQ(message([](auto& t) { t.data.period_sd_ms = std::nan(""); }),
             "test: the recording's period and duty factor have no step-to-step SD (3 step kept); give period_sigma_ms and "
             "duty_factor_sigma");
