@@ -40,7 +40,9 @@ Observable observable(const config::Config& cfg, const toml::table& t) {
     if (n->is_string()) o.scale_parameter = text(cfg, *n, "scale");
     else o.scale = number(cfg, *n, "scale");
   }
-  if (auto n = t.get("sigma_deg")) {
+  if (auto n = t.get("sigma_deg"); n && n->is_string()) {
+    o.sigma_parameter = text(cfg, *n, "sigma_deg");
+  } else if (n) {
     o.sigma_deg = number(cfg, *n, "sigma_deg");
     if (o.sigma_deg < 0) throw Error(where(cfg, *n) + ": sigma_deg must be >= 0 (0: the recording's step-to-step SD)");
   }

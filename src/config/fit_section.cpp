@@ -383,6 +383,12 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
   FitOverrides recording_ov = ov;
   if (!data_to_recording) recording_ov.data.clear();
   load_recording_targets(cfg, fit, recording_ov, spec);
+  // An estimated noise is the likelihood's own scale; rescaling by 2 cost / (m - n) would count
+  // it twice (and the cost then holds the noise residuals' constant).
+  for (const auto& t : spec.targets.step_cycles)
+    for (const auto& o : t.observables)
+      if (!o.sigma_parameter.empty() && !spec.absolute_sigma)
+        throw Error(o.origin + ": sigma_deg = \"" + o.sigma_parameter + "\" estimates the noise; set absolute_sigma = true in [fit]");
 
   // Horizon: [fit] overrides [simulation] for feature targets; kinematic data set their own.
   spec.problem.discard_ms = sim.discard_ms;

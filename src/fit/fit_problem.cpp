@@ -76,11 +76,15 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
   const auto& ps = model_.parameters();
   base_p_ = ps.values();
   std::set<std::string> offset_ids;
+  std::map<std::string, std::string> roles;  // id -> what it is (an offset and a noise share "deg")
   auto add_offset = [&](const std::string& id, const std::string& unit, const std::string& origin, const char* what) {
     if (id.empty()) return;
     if (ps.contains(id)) throw Error(origin + ": " + what + " parameter '" + id + "' is also a model parameter");
     auto [it, fresh] = offset_units_.emplace(id, unit);
     if (!fresh && it->second != unit) throw Error(origin + ": parameter '" + id + "' has two roles (" + it->second + " and " + unit + ")");
+    auto [role, new_role] = roles.emplace(id, what);
+    if (!new_role && role->second != what)
+      throw Error(origin + ": parameter '" + id + "' has two roles (" + role->second + " and " + what + ")");
     offset_ids.insert(id);
   };
   for (auto& k : targets_.kinematics) add_offset(k.time_offset_parameter, "ms", k.origin, "time offset");
@@ -88,6 +92,8 @@ FitProblem::FitProblem(const model::OdeModel& model, std::vector<FitParameter> p
     for (auto& o : t.observables) {
       add_offset(o.offset_parameter, "deg", o.origin, "offset");
       add_offset(o.scale_parameter, "1", o.origin, "scale");
+      add_offset(o.sigma_parameter, "deg", o.origin, "noise");
+      if (!o.sigma_parameter.empty()) noise_ids_.insert(o.sigma_parameter);
     }
   check_parameters(offset_ids);
   map_estimates(offset_ids);
@@ -108,6 +114,11 @@ void FitProblem::check_parameters(const std::set<std::string>& offset_ids) {
     const std::string w = fp.origin.empty() ? "" : fp.origin + ": ";
     if (!seen.insert(fp.id).second) throw Error(w + "parameter '" + fp.id + "' given twice");
     validate(fp);
+    if (noise_ids_.count(fp.id)) {
+      if (!((fp.estimate ? fp.lower : fp.nominal) > 0))
+        throw Error(w + "'" + fp.id + "' (an observable's noise, deg) needs " + (fp.estimate ? "a lower bound" : "a value") + " > 0");
+      continue;
+    }
     if (offset_ids.count(fp.id)) {
       if (fp.scale != Scale::Lin) throw Error(w + "'" + fp.id + "' (an offset or observable scale) must use parameterScale lin");
       continue;

@@ -103,17 +103,27 @@ class FitProblem : public ResidualProblem {
   std::vector<double> offset_fixed_;
   std::vector<size_t> switch_channel_, kin_channel_base_;
   std::vector<std::vector<size_t>> kin_channels_;  // per kinematic target: model angle channel per data channel
-  // Per step-cycle target, per observable: model angle channel, data channel, offset and scale
-  // (index of the estimate, or -1 and the fixed value).
+  // Per step-cycle target, per observable: model angle channel, data channel, offset, scale and
+  // noise parameter (index of the estimate, or -1 and the fixed value; a fixed noise of 0: none)
+  // and, for an estimated noise, the centre ln(sigma0) and span M of its residuals (noise_rows).
   struct StepCycleMap {
     std::vector<size_t> model_channel, data_channel;
-    std::vector<long> offset_est, scale_est;
-    std::vector<double> offset_fixed, scale_fixed;
+    std::vector<long> offset_est, scale_est, sigma_est;
+    std::vector<double> offset_fixed, scale_fixed, sigma_fixed, noise_centre, noise_span;
   };
   std::vector<StepCycleMap> step_maps_;
-  std::tuple<size_t, size_t, double, double> observable_at(const features::ModelStepCycle& mc, const StepCycleMap& m,
-                                                           size_t o, const double* x) const;
+  size_t noise_rows(const StepCycleMap& m, size_t o, double sigma, size_t n_bins, size_t row, double* r,
+                    std::vector<double>& dth) const;
+  struct ObservableAt {
+    size_t model_profile, data_channel;
+    double offset, scale, sigma;  // sigma 0: per bin from the recording or the observable's sigma_deg
+  };
+  ObservableAt observable_at(const features::ModelStepCycle& mc, const StepCycleMap& m, size_t o, const double* x) const;
+  double theta_value(long est, double fixed, const double* x) const {
+    return est >= 0 ? from_scaled(est_[static_cast<size_t>(est)].scale, x[est]) : fixed;
+  }
   std::map<std::string, std::string> offset_units_;  // non-model estimates: id -> unit
+  std::set<std::string> noise_ids_;                 // those that are an observable's noise (any scale)
   std::string value_only_feature_;                 // first target without gradients (empty: none)
   mutable std::atomic<long> evaluations_{0}, jacobian_evaluations_{0};
 };

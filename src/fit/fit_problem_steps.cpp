@@ -23,8 +23,10 @@ size_t index_of(const std::vector<std::string>& names, const std::string& name, 
   throw Error(what + " (it has: " + have + ")");
 }
 
-// The noise of bin k of data channel c: the observable's own, else the recording's SD (floored).
-double bin_sigma(const StepCycleTarget& t, const Observable& o, size_t c, size_t k) {
+// The noise of bin k of data channel c: the observable's noise parameter (sigma > 0), its fixed
+// sigma_deg, else the recording's SD (floored).
+double bin_sigma(const StepCycleTarget& t, const Observable& o, size_t c, size_t k, double sigma) {
+  if (sigma > 0) return sigma;
   return o.sigma_deg > 0 ? o.sigma_deg : std::max(t.data.sd_deg[c][k], t.sigma_floor_deg);
 }
 double period_sigma(const StepCycleTarget& t) { return t.period_sigma_ms > 0 ? t.period_sigma_ms : t.data.period_sd_ms; }
@@ -44,12 +46,12 @@ std::pair<long, double> FitProblem::observable_parameter(const std::string& id, 
 }
 
 // Observable o of a target at estimates x: the model's profile index, the recording's channel,
-// the offset and the scale.
-std::tuple<size_t, size_t, double, double> FitProblem::observable_at(const features::ModelStepCycle& mc, const StepCycleMap& m,
-                                                                     size_t o, const double* x) const {
+// the offset, the scale and the noise parameter's value (0: none).
+FitProblem::ObservableAt FitProblem::observable_at(const features::ModelStepCycle& mc, const StepCycleMap& m, size_t o,
+                                                   const double* x) const {
   const auto mch = std::find(mc.channels.begin(), mc.channels.end(), m.model_channel[o]) - mc.channels.begin();
   return {static_cast<size_t>(mch), m.data_channel[o], offset_value(m.offset_est[o], m.offset_fixed[o], x),
-          offset_value(m.scale_est[o], m.scale_fixed[o], x)};
+          offset_value(m.scale_est[o], m.scale_fixed[o], x), theta_value(m.sigma_est[o], m.sigma_fixed[o], x)};
 }
 
 void FitProblem::label_step_cycles() {
@@ -76,16 +78,53 @@ void FitProblem::label_step_cycles() {
       m.offset_fixed.push_back(off_fixed);
       m.scale_est.push_back(scale_est);
       m.scale_fixed.push_back(scale_fixed);
+      const auto [sigma_est, sigma_fixed] = observable_parameter(o.sigma_parameter, 0, o.origin, "noise");
+      m.sigma_est.push_back(sigma_est);
+      m.sigma_fixed.push_back(sigma_fixed);
+      const FitParameter* noise = sigma_est >= 0 ? &est_[static_cast<size_t>(sigma_est)] : nullptr;
+      m.noise_centre.push_back(noise ? 0.5 * std::log(noise->lower * noise->upper) : 0);
+      m.noise_span.push_back(noise ? 0.75 * std::log(noise->upper / noise->lower) : 0);
+      if (noise && !(noise->upper > noise->lower))
+        throw Error(o.origin + ": noise parameter '" + noise->id + "' needs an upper bound above its lower bound");
       for (size_t k = 0; k < t.data.phase.size(); ++k) {
-        if (!(bin_sigma(t, o, m.data_channel.back(), k) > 0))
+        if (!(bin_sigma(t, o, m.data_channel.back(), k, sigma_fixed) > 0) && sigma_est < 0)
           throw Error(o.origin + ": no noise for '" + o.data_channel + "' (the recording's SD needs two steps; give sigma_deg)");
         labels_.push_back("steps " + o.data_channel + " @" + format_g(t.data.phase[k]));
+      }
+      if (sigma_est >= 0) {
+        labels_.push_back("steps " + o.data_channel + " noise");
+        labels_.push_back("steps " + o.data_channel + " noise bound");
       }
     }
     labels_.push_back("steps " + t.leg + " period");
     labels_.push_back("steps " + t.leg + " duty_factor");
     step_maps_.push_back(std::move(m));
   }
+}
+
+// An estimated noise sigma shared by n bins adds n ln(sigma) to the negative log-likelihood
+// 1/2 sum r^2 + n ln(sigma). With t = ln(sigma / sigma0) it enters as two residuals,
+//   e1 = sqrt(n) (t + 1),  e2 = sqrt(n) sqrt(M^2 - t^2),  1/2 (e1^2 + e2^2) = n t + const,
+// whose Gauss-Newton curvature in sigma, n / sigma^2 (1 + t^2 / (M^2 - t^2)), is the
+// likelihood's n / sigma^2 at sigma0 and close to it nearby. (Data2Dynamics' single residual
+// sqrt(2 ln sigma + c) has curvature 1 / (sigma^2 e^2), exact only where e = 1, and a
+// Gauss-Newton iteration in sigma that converges slowly elsewhere.) sigma0 is the geometric
+// middle of sigma's bounds and M 1.5 times their half-width in ln(sigma), so e2 stays real
+// inside them and a little beyond.
+size_t FitProblem::noise_rows(const StepCycleMap& m, size_t o, double sigma, size_t n_bins, size_t row, double* r,
+                              std::vector<double>& dth) const {
+  const double sn = std::sqrt(static_cast<double>(n_bins)), t = std::log(sigma) - m.noise_centre[o], M = m.noise_span[o];
+  if (!(std::abs(t) < M))
+    throw Error("noise parameter '" + est_[static_cast<size_t>(m.sigma_est[o])].id + "' at " + format_g(sigma) +
+                " deg, far outside its bounds");
+  r[row] = sn * (t + 1);
+  r[row + 1] = sn * std::sqrt(M * M - t * t);
+  if (!dth.empty()) {
+    const size_t j = static_cast<size_t>(m.sigma_est[o]), n = est_.size();
+    dth[row * n + j] = sn / sigma;
+    dth[(row + 1) * n + j] = -sn * t / (sigma * std::sqrt(M * M - t * t));
+  }
+  return row + 2;
 }
 
 size_t FitProblem::step_cycle_rows(const solver::SolveResult& res, const double* x, bool sens, size_t row, double* r,
@@ -105,15 +144,17 @@ size_t FitProblem::step_cycle_rows(const solver::SolveResult& res, const double*
     const features::ModelStepCycle mc = features::model_step_cycle(model_, res, t.model_leg, static_cast<int>(t.data.phase.size()), fo, sens);
     for (size_t o = 0; o < t.observables.size(); ++o) {
       const Observable& ob = t.observables[o];
-      const auto [mch, dch, off, scale] = observable_at(mc, m, o, x);
+      const auto [mch, dch, off, scale, sigma] = observable_at(mc, m, o, x);
       for (size_t k = 0; k < t.data.phase.size(); ++k, ++row) {
-        const double s = bin_sigma(t, ob, dch, k);
+        const double s = bin_sigma(t, ob, dch, k, sigma);
         r[row] = (ob.sign * scale * mc.mean_deg[mch][k] + off - t.data.mean_deg[dch][k]) / s;
         if (dth.empty()) continue;
         if (sens) model_row(row, mc.dmean_deg[mch][k], ob.sign * scale / s);
         if (m.offset_est[o] >= 0) dth[row * n + static_cast<size_t>(m.offset_est[o])] = 1 / s;
         if (m.scale_est[o] >= 0) dth[row * n + static_cast<size_t>(m.scale_est[o])] = ob.sign * mc.mean_deg[mch][k] / s;
+        if (m.sigma_est[o] >= 0) dth[row * n + static_cast<size_t>(m.sigma_est[o])] = -r[row] / s;
       }
+      if (m.sigma_est[o] >= 0) row = noise_rows(m, o, sigma, t.data.phase.size(), row, r, dth);
     }
     r[row] = (mc.period_ms - t.data.mean_period_ms) / period_sigma(t);
     if (sens && !dth.empty()) model_row(row, mc.dperiod_ms, 1 / period_sigma(t));
@@ -138,11 +179,11 @@ void FitProblem::write_step_cycles(io::H5Writer& out, const solver::SolveResult&
     out.write(g + "/phase", t.data.phase, "1");
     for (size_t o = 0; o < t.observables.size(); ++o) {
       const Observable& ob = t.observables[o];
-      const auto [mch, dch, off, scale] = observable_at(mc, m, o, x);
+      const auto [mch, dch, off, scale, noise] = observable_at(mc, m, o, x);
       std::vector<double> model, sigma;
       for (size_t k = 0; k < t.data.phase.size(); ++k) {
         model.push_back(ob.sign * scale * mc.mean_deg[mch][k] + off);
-        sigma.push_back(bin_sigma(t, ob, dch, k));
+        sigma.push_back(bin_sigma(t, ob, dch, k, noise));
       }
       out.write(g + "/data_mean/" + ob.data_channel, t.data.mean_deg[dch], "deg");
       out.write(g + "/data_sd/" + ob.data_channel, t.data.sd_deg[dch], "deg");

@@ -6,7 +6,8 @@
 //    equals the extremal angle with zero velocity (and zero acceleration, i.e. the springs
 //    balance there); r = (angle - angle_deg)/tol, velocity/tol, acceleration/tol.
 //  - StepCycleTarget: a recording's step cycles (docs/recordings.md), compared with the model's
-//    step cycle of one leg: per observable and phase bin r = (sign model + offset - data) / sigma,
+//    step cycle of one leg: per observable and phase bin r = (sign scale model + offset - data) /
+//    sigma (with an estimated sigma, one more residual sqrt(n (2 ln sigma + c)) for its n bins),
 //    and the period and duty factor over their sigmas.
 //  - KinematicTarget: a recorded angle trajectory, r_k = (model(t_k + offset) - data_k) / sigma,
 //    with an optional time offset that is itself a fitted parameter.
@@ -54,6 +55,10 @@ struct Observable {
   std::string scale_parameter;   // a fit parameter (1, lin scale); empty: scale, fixed
   double scale = 1;
   double sigma_deg = 0;          // > 0: the noise; 0: the recording's step-to-step SD per bin
+  // A fit parameter (deg, any scale, lower bound > 0): one noise for all bins, estimated (or
+  // the table's fixed value); overrides sigma_deg. The objective stays the negative
+  // log-likelihood: its n ln(sigma) term enters as one more residual (docs/recordings.md).
+  std::string sigma_parameter;
   std::string origin;
 };
 

@@ -70,6 +70,13 @@ for p in r["parameters"]:
     print("%s %s: %.6g (truth %.6g, SE %.3g, %.2f SE)" % ("ok" if ok else "FAIL", p["name"], e, t, se, (e - t) / se))
     assert ok
 PY
+# An estimated noise needs absolute_sigma (the likelihood's own scale): one line, no output.
+sed -e 's/^absolute_sigma = true/absolute_sigma = false/' -e 's/^offset = "fti_offset"/&\nsigma_deg = "fti_sigma"/' \
+  -e 's/^\[fit.parameters\]/&\n"fti_sigma" = { nominal = 2.0, lower = 0.1, upper = 20.0, scale = "log" }/' fit.toml >noise.toml
+err=$("$PHASMID" fit noise.toml --data trial.mat -o noise.h5 -q 2>&1)
+want='phasmid: error: noise.toml:36: sigma_deg = "fti_sigma" estimates the noise; set absolute_sigma = true in [fit]'
+if [ "$err" = "$want" ] && [ ! -e noise.h5 ]; then echo "ok: estimated noise without absolute_sigma refused"
+else echo "FAIL: estimated noise without absolute_sigma: '$err'"; fail=1; fi
 render fit && grep -q 'id="fig-fit-steps-0-L2.fti"' fit.dom && echo "ok report: step cycle of L2.fti" \
   || { echo "FAIL report: no step-cycle figure of L2.fti"; fail=1; }
 exit $fail

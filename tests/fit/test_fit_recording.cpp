@@ -8,6 +8,7 @@
 
 #include "config/config.hpp"
 #include "fit/fit_problem.hpp"
+#include "fit/optimizer.hpp"
 #include "fit_test_util.hpp"
 
 using namespace phasmid;
@@ -54,7 +55,7 @@ fit::StepCycleTarget target() {
     o.origin = "test";
     if (j == 0) o.offset_parameter = "thc_offset";
     else o.offset_deg = 10;
-    if (j == 2) o.scale_parameter = "fti_scale";
+    if (j == 2) o.scale_parameter = "fti_scale", o.sigma_parameter = "fti_sigma";
     t.observables.push_back(o);
   }
   return t;
@@ -65,7 +66,8 @@ std::vector<fit::FitParameter> parameters() {
           {"middle.ctr.cpg_lev.g_app", fit::Scale::Lin, 0.2, 0.5, 0.34, true, "test"},
           {"middle.fti.cpg_ext.g_app", fit::Scale::Lin, 0.1, 0.4, 0.209, true, "test"},
           {"thc_offset", fit::Scale::Lin, -100, 100, -70, true, "test"},
-          {"fti_scale", fit::Scale::Lin, 0.5, 1.5, 0.8, true, "test"}};
+          {"fti_scale", fit::Scale::Lin, 0.5, 1.5, 0.8, true, "test"},
+          {"fti_sigma", fit::Scale::Log, 0.5, 20, 2.0, true, "test"}};
 }
 
 // Max over residuals of |J - J_fd(h)| / max|column of J_fd(h)| for estimated parameter j.
@@ -83,7 +85,7 @@ TEST(FitRecording, StepCycleJacobianMatchesConvergedFiniteDifferences) {
   fit::Targets t;
   t.step_cycles.push_back(target());
   fit::FitProblem p(*s.model, parameters(), t, s.settings);
-  ASSERT_EQ(p.num_residuals(), 3u * 20 + 2);
+  ASSERT_EQ(p.num_residuals(), 3u * 20 + 2 + 2);  // bins, the FTi noise's two, period, duty factor
   const size_t m = p.num_residuals(), n = p.num_parameters();
   const std::vector<double> x = p.start();
   std::vector<double> r(m), J(m * n), J1(m * n), J2(m * n);
@@ -115,12 +117,77 @@ TEST(FitRecording, StepCycleJacobianMatchesConvergedFiniteDifferences) {
   EXPECT_GE(compared, entries * 8 / 10) << compared << " of " << entries << " entries converged";
   EXPECT_GE(compared, 100u);
   // The offset enters every bin of its observable with weight 1/sigma and nothing else; the
-  // scale, sign * model / sigma (r = (sign scale model + offset - data) / sigma).
+  // scale, sign * model / sigma (r = (sign scale model + offset - data) / sigma). The noise
+  // (x = ln sigma) enters its bins as -r and its two residuals e1 = sqrt(n) (t + 1) and
+  // e2 = sqrt(n) sqrt(M^2 - t^2), t = ln(sigma / sigma0), sigma0 = sqrt(0.5 * 20),
+  // M = 0.75 ln(20 / 0.5), as sqrt(n) and -sqrt(n) t / sqrt(M^2 - t^2).
+  const double sn = std::sqrt(20.0), t0 = std::log(2 / std::sqrt(10.0)), M = 0.75 * std::log(40.0);
+  EXPECT_EQ(p.residual_labels()[60], "steps L2.fti noise");
+  EXPECT_EQ(p.residual_labels()[61], "steps L2.fti noise bound");
+  EXPECT_NEAR(r[60], sn * (t0 + 1), 1e-12);
+  EXPECT_NEAR(r[61], sn * std::sqrt(M * M - t0 * t0), 1e-12);
   for (size_t q = 0; q < m; ++q) {
     EXPECT_DOUBLE_EQ(J[q * n + 3], q < 20 ? 0.5 : 0.0) << p.residual_labels()[q];
     if (q >= 40 && q < 60) EXPECT_NEAR(J[q * n + 4], -((10.0 - 2.0 * r[q]) / 0.8) / 2.0, 1e-9) << p.residual_labels()[q];
     else EXPECT_EQ(J[q * n + 4], 0.0) << p.residual_labels()[q];
+    if (q >= 40 && q < 60) EXPECT_NEAR(J[q * n + 5], -r[q], 1e-12) << p.residual_labels()[q];
+    else if (q == 60) EXPECT_NEAR(J[q * n + 5], sn, 1e-12);
+    else if (q == 61) EXPECT_NEAR(J[q * n + 5], -sn * t0 / std::sqrt(M * M - t0 * t0), 1e-12);
+    else EXPECT_EQ(J[q * n + 5], 0.0) << p.residual_labels()[q];
   }
+}
+
+// An estimated noise maximises the likelihood: with everything else fixed, sigma^2 is the mean
+// squared difference of model and data over the observable's bins (closed form).
+TEST(FitRecording, EstimatedNoiseIsTheRootMeanSquareDifference) {
+  LegSetup s;
+  auto params = parameters();
+  for (auto& q : params) q.estimate = q.id == "fti_sigma";
+  // The model's FTi profile through the observable (sigma 2 at the start, data 0), then data
+  // that differ from it by known amounts d_k: sigma-hat = sqrt(mean d_k^2).
+  fit::Targets t;
+  t.step_cycles.push_back(target());
+  std::vector<double> model(20), x, r;
+  {
+    fit::FitProblem p0(*s.model, params, t, s.settings);
+    x = p0.start(), r.resize(p0.num_residuals());
+    std::string err;
+    ASSERT_TRUE(p0.evaluate(x.data(), r.data(), nullptr, &err)) << err;
+    for (size_t k = 0; k < 20; ++k) model[k] = 2.0 * r[40 + k];
+  }
+  auto& d = t.step_cycles.back().data;
+  double ss = 0;
+  for (size_t k = 0; k < 20; ++k) {
+    const double diff = 1 + 3 * std::sin(2 * M_PI * d.phase[k]);
+    d.mean_deg[2][k] = model[k] - diff;
+    ss += diff * diff;
+  }
+  const double expected = std::sqrt(ss / 20);  // 2.35, inside the bounds [0.5, 20]
+  fit::FitProblem p(*s.model, params, t, s.settings);
+  ASSERT_EQ(p.num_parameters(), 1u);
+  // The cost's gradient J^T r in sigma vanishes there: -sum r_k^2 + n = 0 (exactly).
+  const size_t m = p.num_residuals();
+  std::vector<double> xs = {std::log(expected)}, rs(m), J(m);
+  std::string err;
+  ASSERT_TRUE(p.evaluate(xs.data(), rs.data(), J.data(), &err)) << err;
+  double g = 0, g_start = 0;
+  for (size_t q = 0; q < m; ++q) g += J[q] * rs[q];
+  ASSERT_TRUE(p.evaluate(x.data(), r.data(), J.data(), &err)) << err;
+  for (size_t q = 0; q < m; ++q) g_start += J[q] * r[q];
+  EXPECT_NEAR(g, 0.0, 1e-12 * std::abs(g_start));
+  // And the optimiser finds it (Gauss-Newton's curvature in sigma is close to the likelihood's
+  // there, so a few iterations suffice).
+  fit::OptimizerOptions o;
+  o.function_tolerance = o.parameter_tolerance = o.gradient_tolerance = 1e-15;
+  const fit::FitSummary f = fit::optimize(p, x, o);
+  ASSERT_TRUE(f.usable) << f.message;
+  std::printf("sigma %.10g expected %.10g, %d iterations: %s\n", std::exp(f.x[0]), expected, f.iterations, f.message.c_str());
+  // The cost C (about 800 here, most of it the other observables' fixed residuals) resolves
+  // ln(sigma) only to about sqrt(2 eps C / 2n), its curvature in ln(sigma) being 2n.
+  const double resolution = std::sqrt(2 * 2.2e-16 * f.final_cost / 40);
+  EXPECT_NEAR(std::log(std::exp(f.x[0]) / expected), 0.0, 3 * resolution) << "resolution " << resolution;
+  EXPECT_GT(std::abs(std::exp(f.x[0]) - 2.0), 0.3);  // it moved from the start
+  EXPECT_LE(f.iterations, 6);
 }
 
 TEST(FitRecording, RefusesWhatItCannotCompare) {
@@ -141,6 +208,10 @@ TEST(FitRecording, RefusesWhatItCannotCompare) {
             "test: offset parameter 'nope' is not in the parameter table");
   EXPECT_EQ(message([](auto& t) { t.observables[1].scale_parameter = "thc_offset"; }),
             "test: parameter 'thc_offset' has two roles (deg and 1)");
+  EXPECT_EQ(message([](auto& t) { t.observables[1].offset_parameter = "fti_sigma"; }),
+            "test: parameter 'fti_sigma' has two roles (offset and noise)");
+  EXPECT_EQ(message([](auto& t) { t.observables[2].sigma_parameter = "middle.fti.cpg.epsilon"; }),
+            "test: noise parameter 'middle.fti.cpg.epsilon' is also a model parameter");
   EXPECT_EQ(message([](auto& t) { t.data.period_sd_ms = std::nan(""); }),
             "test: the recording's period and duty factor have no step-to-step SD (3 step kept); give period_sigma_ms and "
             "duty_factor_sigma");
