@@ -86,6 +86,7 @@ int main(int argc, char** argv) {
               cpu_exact, te.last.iterations, te.last.evaluations, te.last.final_cost);
   std::printf("  %-34s %9.3f %9.3f %9.3f %6d %8ld %12.6g\n", "Ceres, central finite differences", tf.median_s, tf.min_s,
               cpu_fd, tf.last.iterations, tf.last.evaluations, tf.last.final_cost);
+  std::printf("  exact: %s\n  finite differences: %s\n", te.last.message.c_str(), tf.last.message.c_str());
   std::printf("  ratio finite-difference / exact: %.2f (median wall), %.2f (cpu)\n", tf.median_s / te.median_s,
               cpu_fd / cpu_exact);
   if (shipped)

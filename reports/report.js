@@ -474,7 +474,7 @@
         ' vs ' + fmt(sc.model_duty_factor, 2);
       (sc.channels || []).forEach(function (c) {
         var id = 'fig-fit-steps-' + i + '-' + safeId(c.name);
-        var f = figure(grid, id, 'Step cycle of ' + c.name + ' (' + (sc.leg || '') + ' against the model\'s ' + (sc.model_leg || '') +
+        var f = figure(grid, id, (sc.condition ? 'Trial ' + sc.condition + ': step' : 'Step') + ' cycle of ' + c.name + ' (' + (sc.leg || '') + ' against the model\'s ' + (sc.model_leg || '') +
           ' leg): the animal\'s mean ± SD over steps per phase bin (band, dashed) and the fitted model through its observable (line); ' +
           summary + '.', 300);
         var at = function (ys) { return ys.map(function (y, k) { return { x: sc.phase[k], y: y }; }); };
@@ -488,7 +488,7 @@
             Object.assign({ label: 'animal mean + SD', data: at(hi), parsing: false, fill: '-1' }, band),
             { label: 'animal mean', data: at(c.data_mean), parsing: false, showLine: true, pointRadius: 0, borderColor: '#555', borderDash: [5, 3], borderWidth: 1.5 },
             lineDataset('model', at(c.model), 1, { borderWidth: 2 })] },
-          options: { plugins: { title: titleOpt('Step cycle: ' + c.name) },
+          options: { plugins: { title: titleOpt((sc.condition ? sc.condition + ': step' : 'Step') + ' cycle: ' + c.name) },
             scales: { x: axis('phase (touchdown to touchdown)', { type: 'linear', min: 0, max: 1 }), y: axis(withUnits(c.name + ' angle', 'deg')) } }
         });
       });

@@ -1,5 +1,7 @@
 // [[fit.recording]]: recordings of walking animals as fit targets, compared step cycle by step
 // cycle through observables (docs/recordings.md "Fitting the model to a recording").
+#include <set>
+
 #include "common/error.hpp"
 #include "config/fit_section.hpp"
 #include "config/toml_util.hpp"
@@ -66,7 +68,7 @@ StepCycleTarget recording_target(const config::Config& cfg, const toml::table& t
                                  double frame_rate_hz) {
   check_keys(cfg, t, "fit.recording",
              {"file", "leg", "model_leg", "bins", "discard_steps", "max_period_deviation", "period_sigma_ms",
-              "duty_factor_sigma", "sigma_floor_deg", "sample_ms", "frame_rate_hz", "observable", "set"});
+              "duty_factor_sigma", "sigma_floor_deg", "sample_ms", "frame_rate_hz", "observable", "set", "condition"});
   StepCycleTarget s;
   s.origin = where(cfg, t);
   if (auto n = t.get("file")) s.file = resolve_path(cfg, text(cfg, *n, "file"));
@@ -85,6 +87,7 @@ StepCycleTarget recording_target(const config::Config& cfg, const toml::table& t
   if (auto n = t.get("sigma_floor_deg")) s.sigma_floor_deg = config::number_in(cfg, *n, "sigma_floor_deg", 0, 1e3);
   if (auto n = t.get("sample_ms")) s.sample_ms = config::number_in(cfg, *n, "sample_ms", 0.01, 100);
   if (auto n = t.get("frame_rate_hz")) frame_rate_hz = number(cfg, *n, "frame_rate_hz");
+  if (auto n = t.get("condition")) s.condition = text(cfg, *n, "condition");
   for (const toml::table* ot : fit_tables(cfg, t, "observable")) s.observables.push_back(observable(cfg, *ot));
   if (s.observables.empty())
     throw Error(s.origin + ": [[fit.recording]] needs at least one [[fit.recording.observable]] (data = \"" + s.leg +
@@ -92,6 +95,30 @@ StepCycleTarget recording_target(const config::Config& cfg, const toml::table& t
   const KinematicData d = read_recording(s.file, frame_rate_hz, {s.leg});
   s.data = summarise(d, s.leg, o, s.origin);
   return s;
+}
+
+// [fit.conditions.<id>]: PEtab's condition table, one table per condition: model parameter (or
+// pattern) = "fit parameter id" (estimated or fixed in [fit.parameters]) or a fixed value.
+std::vector<Condition> conditions(const config::Config& cfg, const toml::table& fit) {
+  std::vector<Condition> out;
+  const toml::node* node = fit.get("conditions");
+  if (!node) return out;
+  const toml::table* tab = node->as_table();
+  if (!tab) throw Error(where(cfg, *node) + ": conditions must be tables [fit.conditions.<id>]");
+  for (const auto& [key, value] : *tab) {
+    Condition c;
+    c.id = std::string(key.str());
+    c.origin = where(cfg, value);
+    const toml::table* t = value.as_table();
+    if (!t) throw Error(c.origin + ": [fit.conditions." + c.id + "] must be a table (model parameter = \"fit parameter\" or value)");
+    for (const auto& [name, v] : config::flatten(*t)) {
+      if (v->is_string()) c.parameter_ids[name] = text(cfg, *v, name);
+      else c.values[name] = number(cfg, *v, name);
+    }
+    if (c.parameter_ids.empty() && c.values.empty()) throw Error(c.origin + ": condition '" + c.id + "' sets no parameter");
+    out.push_back(std::move(c));
+  }
+  return out;
 }
 
 }  // namespace
@@ -105,6 +132,17 @@ void load_recording_targets(const config::Config& cfg, const toml::table& fit, c
     if (!in_target_set(cfg, *t, spec.target_set)) continue;
     spec.targets.step_cycles.push_back(recording_target(cfg, *t, override_file ? ov.data : "", 0));
     spec.inputs.push_back(spec.targets.step_cycles.back().file);
+  }
+  // A condition no recording names is a mistake; one whose recordings are all of another target
+  // set is left out.
+  std::set<std::string> named, loaded;
+  for (const toml::table* t : tables)
+    if (auto n = t->get("condition")) named.insert(text(cfg, *n, "condition"));
+  for (const auto& t : spec.targets.step_cycles) loaded.insert(t.condition);
+  for (Condition& c : conditions(cfg, fit)) {
+    if (!named.count(c.id))
+      throw Error(c.origin + ": condition '" + c.id + "' has no targets (give a [[fit.recording]] condition = \"" + c.id + "\")");
+    if (loaded.count(c.id)) spec.conditions.push_back(std::move(c));
   }
 }
 

@@ -472,13 +472,17 @@ void FitProblem::write_model_output(io::H5Writer& out, const double* x, bool usa
       out.write("/fit/model" + suffix + "/" + comps[i].channels[c], comps[i].model_deg[c], "deg");
     }
   }
-  if (!targets_.step_cycles.empty()) write_step_cycles(out, run(x, false).res, x);
+  write_step_comparison(out, x);
   solver::SolveResult tr = simulate(x, output_dt_ms);
   io::write_trajectory(out, model_, tr);
   io::write_parameters(out, model_, model_parameters(x));
   features::FeatureOptions fo = settings_.feature_options;
   fo.discard_ms = settings_.discard_ms;
   features::write_features_h5(out, features::compute_features(model_, tr, fo));
+}
+
+void FitProblem::write_step_comparison(io::H5Writer& out, const double* x) const {
+  if (!targets_.step_cycles.empty()) write_step_cycles(out, run(x, false).res, x);
 }
 
 }  // namespace phasmid::fit

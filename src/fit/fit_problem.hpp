@@ -24,6 +24,10 @@ namespace phasmid::fit {
 struct ProblemSettings {
   double t_end_ms = 0;     // 0: the latest time any target needs (at least one output)
   double discard_ms = 0;   // transient ignored by feature targets
+  // Output of step-cycle comparisons: /fit/steps/<step_output_base + i>, with a "condition"
+  // attribute when condition is set (fit/condition_problem.hpp).
+  std::string condition;
+  size_t step_output_base = 0;
   solver::SolverOptions solver;
   features::FeatureOptions feature_options;  // discard_ms overwritten by the field above
 };
@@ -49,6 +53,10 @@ class FitProblem : public ResidualProblem {
 
   // /fit/model (kinematic comparison), /trajectory, /parameters, /features.
   void write_model_output(io::H5Writer& out, const double* x, bool usable, double output_dt_ms) const override;
+
+  // /fit/steps/<i> alone (write_model_output writes it with the rest), for the conditions of a
+  // ConditionsProblem after its first.
+  void write_step_comparison(io::H5Writer& out, const double* x) const;
 
   // Central finite-difference Jacobian (row-major), for tests and benchmarks. Relative step h.
   bool jacobian_fd(const double* x, double* J, double h = 1e-6, std::string* error = nullptr) const;

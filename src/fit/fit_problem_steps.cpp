@@ -175,7 +175,7 @@ void FitProblem::write_step_cycles(io::H5Writer& out, const solver::SolveResult&
     const StepCycleTarget& t = targets_.step_cycles[i];
     const StepCycleMap& m = step_maps_[i];
     const features::ModelStepCycle mc = features::model_step_cycle(model_, res, t.model_leg, static_cast<int>(t.data.phase.size()), fo, false);
-    const std::string g = "/fit/steps/" + std::to_string(i);
+    const std::string g = "/fit/steps/" + std::to_string(settings_.step_output_base + i);
     out.write(g + "/phase", t.data.phase, "1");
     for (size_t o = 0; o < t.observables.size(); ++o) {
       const Observable& ob = t.observables[o];
@@ -192,6 +192,7 @@ void FitProblem::write_step_cycles(io::H5Writer& out, const solver::SolveResult&
       out.set_attribute(g + "/model/" + ob.data_channel, "model_channel", ob.model_channel);
     }
     out.set_attribute(g, "file", t.file);
+    if (!settings_.condition.empty()) out.set_attribute(g, "condition", settings_.condition);
     out.set_attribute(g, "leg", t.leg);
     out.set_attribute(g, "model_leg", t.model_leg);
     out.set_attribute(g, "data_period_ms", t.data.mean_period_ms);

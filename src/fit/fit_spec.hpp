@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "fit/condition_problem.hpp"
 #include "fit/fit_problem.hpp"
 #include "fit/multistart.hpp"
 #include "fit/optimizer.hpp"
@@ -25,6 +26,7 @@ struct KindFitSpec {
 struct FitSpec {
   std::vector<FitParameter> parameters;
   Targets targets;
+  std::vector<Condition> conditions;  // [fit.conditions]: trials with parameters of their own
   ProblemSettings problem;
   OptimizerOptions optimizer;
   MultistartOptions multistart;

@@ -69,6 +69,7 @@ struct StepCycleTarget {
   double period_sigma_ms = 0, duty_factor_sigma = 0;  // 0: the recording's step-to-step SD
   double sigma_floor_deg = 0.5;  // lower bound of a per-bin SD taken from the recording
   double sample_ms = 2;          // spacing of the model outputs the profiles interpolate
+  std::string condition;         // PEtab's simulationConditionId (fit/condition_problem.hpp); empty: none
   std::string origin, file;
 };
 

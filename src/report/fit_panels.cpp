@@ -48,7 +48,7 @@ json step_cycles(const H5Reader& r, json& out) {
     const std::vector<double> phase = r.read_doubles(g + "/phase");
     json s;
     s["phase"] = nums(phase);
-    for (const char* a : {"leg", "model_leg", "file"})
+    for (const char* a : {"leg", "model_leg", "file", "condition"})
       s[a] = r.has_attribute(g, a) ? json(r.read_string_attribute(g, a)) : json(nullptr);
     for (const char* a : {"data_period_ms", "model_period_ms", "data_duty_factor", "model_duty_factor", "data_steps", "model_steps"})
       s[a] = r.has_attribute(g, a) ? json(r.read_double_attribute(g, a)) : json(nullptr);

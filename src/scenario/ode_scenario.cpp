@@ -115,6 +115,8 @@ std::vector<std::pair<std::string, std::string>> OdeScenario::run_time_parameter
 }
 
 std::unique_ptr<fit::ResidualProblem> OdeScenario::make_fit(const fit::FitSpec& spec) const {
+  if (!spec.conditions.empty())
+    return std::make_unique<fit::ConditionsProblem>(*model_, spec.parameters, spec.targets, spec.problem, spec.conditions);
   return std::make_unique<fit::FitProblem>(*model_, spec.parameters, spec.targets, spec.problem);
 }
 

@@ -4,9 +4,12 @@
 // shown converging; and the refusals of a malformed target.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "config/config.hpp"
+#include "fit/condition_problem.hpp"
 #include "fit/fit_problem.hpp"
 #include "fit/optimizer.hpp"
 #include "fit_test_util.hpp"
@@ -215,4 +218,102 @@ TEST(FitRecording, RefusesWhatItCannotCompare) {
   EXPECT_EQ(message([](auto& t) { t.data.period_sd_ms = std::nan(""); }),
             "test: the recording's period and duty factor have no step-to-step SD (3 step kept); give period_sigma_ms and "
             "duty_factor_sigma");
+}
+
+// Two trials (PEtab conditions) of one model: the FTi extensor drive is each trial's own, the
+// rest shared, and trial b fixes the levator drive. The stacked problem's residuals and
+// Jacobian are those of the two trials' own problems, built by hand, placed in their rows and
+// columns.
+TEST(FitRecording, ConditionsStackTheirTrialsAndShareTheRest) {
+  LegSetup s;
+  std::vector<fit::FitParameter> all;
+  for (const auto& q : parameters())
+    if (q.id != "middle.fti.cpg_ext.g_app") all.push_back(q);
+  all.push_back({"gapp_a", fit::Scale::Lin, 0.1, 0.4, 0.209, true, "test"});
+  all.push_back({"gapp_b", fit::Scale::Lin, 0.1, 0.4, 0.25, true, "test"});
+  fit::Targets t;
+  t.step_cycles = {target(), target()};
+  t.step_cycles[0].condition = "a";
+  t.step_cycles[1].condition = "b";
+  t.step_cycles[1].data.mean_deg[1].assign(20, 5.0);
+  fit::Condition a{"a", {{"middle.fti.cpg_ext.g_app", "gapp_a"}}, {}, "a.toml:1"};
+  fit::Condition b{"b", {{"middle.fti.cpg_ext.g_app", "gapp_b"}}, {{"middle.ctr.cpg_lev.g_app", 0.3}}, "b.toml:1"};
+  fit::ConditionsProblem p(*s.model, all, t, s.settings, {a, b});
+  ASSERT_EQ(p.num_conditions(), 2u);
+  // Global estimates: eps, ctr lev, thc_offset, fti_scale, fti_sigma, gapp_a, gapp_b.
+  ASSERT_EQ(p.num_parameters(), 7u);
+  auto part = [&](const std::string& gapp, double gapp_start, bool fixed_lev) {
+    std::vector<fit::FitParameter> ps;
+    for (const auto& q : parameters())
+      if (q.id != "middle.fti.cpg_ext.g_app" && !(fixed_lev && q.id == "middle.ctr.cpg_lev.g_app")) ps.push_back(q);
+    ps.push_back({"middle.fti.cpg_ext.g_app", fit::Scale::Lin, 0.1, 0.4, gapp_start, true, gapp});
+    if (fixed_lev) ps.push_back({"middle.ctr.cpg_lev.g_app", fit::Scale::Lin, 0.3, 0.3, 0.3, false, "b"});
+    return ps;
+  };
+  fit::Targets ta, tb;
+  ta.step_cycles = {t.step_cycles[0]};
+  tb.step_cycles = {t.step_cycles[1]};
+  fit::FitProblem pa(*s.model, part("gapp_a", 0.209, false), ta, s.settings);
+  fit::FitProblem pb(*s.model, part("gapp_b", 0.25, true), tb, s.settings);
+  const size_t ma = pa.num_residuals(), mb = pb.num_residuals(), m = p.num_residuals(), n = 7;
+  ASSERT_EQ(m, ma + mb);
+  EXPECT_EQ(p.residual_labels()[0], "[a] " + pa.residual_labels()[0]);
+  EXPECT_EQ(p.residual_labels()[ma], "[b] " + pb.residual_labels()[0]);
+  const std::vector<double> x = p.start();
+  std::vector<double> r(m), J(m * n), ra(ma), Ja(ma * 6), rb(mb), Jb(mb * 5);
+  std::string err;
+  ASSERT_TRUE(p.evaluate(x.data(), r.data(), J.data(), &err)) << err;
+  // Part a's estimates: eps, lev, thc_offset, fti_scale, fti_sigma, gapp_a -> global 0-5;
+  // part b's: eps, thc_offset, fti_scale, fti_sigma, gapp_b -> global 0, 2, 3, 4, 6.
+  const std::vector<size_t> ca = {0, 1, 2, 3, 4, 5}, cb = {0, 2, 3, 4, 6};
+  std::vector<double> xa, xb;
+  for (size_t j : ca) xa.push_back(x[j]);
+  for (size_t j : cb) xb.push_back(x[j]);
+  ASSERT_TRUE(pa.evaluate(xa.data(), ra.data(), Ja.data(), &err)) << err;
+  ASSERT_TRUE(pb.evaluate(xb.data(), rb.data(), Jb.data(), &err)) << err;
+  for (size_t q = 0; q < m; ++q) {
+    const bool in_a = q < ma;
+    EXPECT_EQ(r[q], in_a ? ra[q] : rb[q - ma]) << p.residual_labels()[q];
+    for (size_t j = 0; j < n; ++j) {
+      const auto& cols = in_a ? ca : cb;
+      const auto k = std::find(cols.begin(), cols.end(), j);
+      const double want = k == cols.end() ? 0.0
+                          : in_a          ? Ja[q * 6 + static_cast<size_t>(k - cols.begin())]
+                                          : Jb[(q - ma) * 5 + static_cast<size_t>(k - cols.begin())];
+      EXPECT_EQ(J[q * n + j], want) << p.residual_labels()[q] << ", " << p.estimated()[j].id;
+    }
+  }
+  EXPECT_NE(r[ma + 20], ra[20]);  // the trials differ (b's CTr data, its fixed levator drive)
+  EXPECT_EQ(p.tied_parameters(5), std::vector<std::string>{"middle.fti.cpg_ext.g_app"});
+  EXPECT_EQ(p.parameter_unit(6), "nS");
+}
+
+TEST(FitRecording, ConditionsRefuseWhatTheyCannotMap) {
+  LegSetup s;
+  auto message = [&](std::vector<fit::Condition> cs, const std::function<void(fit::Targets&, std::vector<fit::FitParameter>&)>& edit) {
+    std::vector<fit::FitParameter> all = parameters();
+    all.push_back({"gapp_a", fit::Scale::Lin, 0.1, 0.4, 0.209, true, "test"});
+    fit::Targets t;
+    t.step_cycles = {target()};
+    t.step_cycles[0].condition = "a";
+    edit(t, all);
+    return fittest::error_message([&] { fit::ConditionsProblem p(*s.model, all, t, s.settings, cs); });
+  };
+  const fit::Condition a{"a", {{"middle.fti.cpg_ext.g_app", "gapp_a"}}, {}, "c.toml:3"};
+  auto none = [](fit::Targets&, std::vector<fit::FitParameter>&) {};
+  EXPECT_EQ(message({}, none), "test: condition 'a' is not defined (give [fit.conditions.a])");
+  EXPECT_EQ(message({a, {"b", {}, {{"middle.ctr.cpg_lev.g_app", 0.3}}, "c.toml:5"}}, none),
+            "c.toml:5: condition 'b' has no targets (give a [[fit.recording]] condition = \"b\")");
+  EXPECT_EQ(message({{"a", {{"middle.fti.cpg_ext.g_app", "nope"}}, {}, "c.toml:3"}}, none),
+            "c.toml:3: condition 'a' sets 'middle.fti.cpg_ext.g_app' to 'nope', which is not in [fit.parameters]");
+  EXPECT_EQ(message({{"a", {{"middle.fti.cpg_ext.g_app", "middle.ctr.cpg_lev.g_app"}}, {}, "c.toml:3"}}, none),
+            "c.toml:3: condition 'a' sets 'middle.fti.cpg_ext.g_app' to 'middle.ctr.cpg_lev.g_app', a model parameter; give "
+            "the condition's parameter a name of its own");
+  // The shared middle.fti.cpg_ext.g_app is set by the one condition: it would estimate nothing.
+  EXPECT_EQ(message({a}, none),
+            "test: parameter 'middle.fti.cpg_ext.g_app' is estimated but every condition sets it (give it to a condition, or "
+            "leave it out)");
+  EXPECT_EQ(message({{"a", {{"middle.fti.cpg_ext.g_app", "gapp_a"}}, {{"middle.fti.nope", 1.0}}, "c.toml:3"}},
+                    [](fit::Targets&, std::vector<fit::FitParameter>& ps) { ps.erase(ps.begin() + 2); }),
+            "condition 'a': c.toml:3: unknown parameter 'middle.fti.nope'; `phasmid params CONFIG` lists them");
 }
