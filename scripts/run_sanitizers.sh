@@ -25,10 +25,10 @@ SANITIZER_EXES="test_h5_file test_h5_heap_check test_input_output_checks test_tr
 # Tests left out of the executables that are built: the browser renderings (Chromium is not
 # instrumented and dominates their time), the examples test (replaced by the shortened
 # examples below), MPI (build-asan has none), the demo, the GSA command-line test, the two
-# writers' pairs and the synthetic recording fits (minutes of simulation under ASan, past
+# writers' pairs and the synthetic recording fits and PEtab round trip (minutes of simulation under ASan, past
 # ctest's 900 s limit for the fit; the Release suite runs them; the lock's own tests and the
 # recording readers' tests run here), and the long runs among the trajectory-stream comparisons.
-SLOW_TESTS='ReportRender\.|script_configs|script_demo|script_mpi|script_gsa_cli|script_writers|script_fit_recording|script_fit_conditions|_NOT_BUILT'
+SLOW_TESTS='ReportRender\.|script_configs|script_demo|script_mpi|script_gsa_cli|script_writers|script_fit_recording|script_fit_conditions|script_petab|_NOT_BUILT'
 SLOW_TESTS+='|TrajectoryStream\.(CurveWalkingBodyPath|TriggeredCommandsPartitioned|ThreeLegsSixLegPatternPartitioned)'
 
 source scripts/sanitizer_build.sh

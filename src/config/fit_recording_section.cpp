@@ -6,6 +6,8 @@
 #include "config/fit_section.hpp"
 #include "config/toml_util.hpp"
 #include "fit/kinematic_data.hpp"
+#include "fit/petab_tables.hpp"
+#include "io/text_file.hpp"
 
 namespace phasmid::fit {
 namespace {
@@ -121,6 +123,33 @@ std::vector<Condition> conditions(const config::Config& cfg, const toml::table& 
   return out;
 }
 
+// [fit.petab]: recordings as PEtab observable, measurement and (optional) condition tables
+// (fit/petab_tables.hpp), e.g. as `phasmid petab` wrote them.
+void load_petab(const config::Config& cfg, const toml::table& fit, FitSpec& spec) {
+  const toml::node* node = fit.get("petab");
+  if (!node) return;
+  const toml::table* t = node->as_table();
+  if (!t) throw Error(where(cfg, *node) + ": petab must be a table [fit.petab] (observables, measurements, conditions)");
+  check_keys(cfg, *t, "fit.petab", {"observables", "measurements", "conditions", "sample_ms"});
+  PetabInput in;
+  auto read = [&](const char* key, std::string& text, std::string& origin, bool required) {
+    const toml::node* n = t->get(key);
+    if (!n) {
+      if (required) throw Error(where(cfg, *node) + ": [fit.petab] needs " + key + " (a TSV file)");
+      return;
+    }
+    origin = resolve_path(cfg, config::text(cfg, *n, key));
+    text = io::read_text_file(origin, std::string("PEtab ") + key + " table");
+    spec.inputs.push_back(origin);
+  };
+  read("observables", in.observables, in.observables_origin, true);
+  read("measurements", in.measurements, in.measurements_origin, true);
+  read("conditions", in.conditions, in.conditions_origin, false);
+  double sample_ms = StepCycleTarget{}.sample_ms;
+  if (auto n = t->get("sample_ms")) sample_ms = config::number_in(cfg, *n, "sample_ms", 0.01, 100);
+  parse_petab(in, sample_ms, spec.targets, spec.conditions);
+}
+
 }  // namespace
 
 void load_recording_targets(const config::Config& cfg, const toml::table& fit, const FitOverrides& ov, FitSpec& spec) {
@@ -133,12 +162,16 @@ void load_recording_targets(const config::Config& cfg, const toml::table& fit, c
     spec.targets.step_cycles.push_back(recording_target(cfg, *t, override_file ? ov.data : "", 0));
     spec.inputs.push_back(spec.targets.step_cycles.back().file);
   }
+  load_petab(cfg, fit, spec);
   // A condition no recording names is a mistake; one whose recordings are all of another target
   // set is left out.
   std::set<std::string> named, loaded;
   for (const toml::table* t : tables)
     if (auto n = t->get("condition")) named.insert(text(cfg, *n, "condition"));
   for (const auto& t : spec.targets.step_cycles) loaded.insert(t.condition);
+  if (!spec.conditions.empty() && fit.get("conditions"))
+    throw Error(where(cfg, *fit.get("conditions")) + ": [fit.conditions] and [fit.petab]'s condition table both give conditions; keep one");
+  for (const auto& t : spec.targets.step_cycles) named.insert(t.condition);  // [fit.petab]'s
   for (Condition& c : conditions(cfg, fit)) {
     if (!named.count(c.id))
       throw Error(c.origin + ": condition '" + c.id + "' has no targets (give a [[fit.recording]] condition = \"" + c.id + "\")");

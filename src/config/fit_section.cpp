@@ -303,7 +303,7 @@ FitSpec load_fit_spec(const config::Config& cfg, const model::OdeModel& model, c
                      "max_evaluations", "function_tolerance", "parameter_tolerance", "gradient_tolerance", "initial_trust_region_radius", "loss",
                      "loss_scale", "t_end_ms", "discard_ms", "absolute_sigma", "profile", "profile_points",
                      "profile_span", "target_set", "output_dt_ms", "parameter_table", "parameters", "feature",
-                     "switch", "data", "recording", "conditions", "min_swing_deg", "min_swing_fraction", "sensitivity_error_control"});
+                     "switch", "data", "recording", "conditions", "petab", "min_swing_deg", "min_swing_fraction", "sensitivity_error_control"});
 
   load_fit_common(cfg, fit, ov, {"feature", "switch", "recording"},
                   [&](const std::string& name) {

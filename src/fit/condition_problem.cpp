@@ -37,6 +37,17 @@ std::string unit_of(const model::OdeModel& model, const std::string& name) {
   return "";
 }
 
+// The parameters targets name that are not the model's: time offsets, observables' offsets,
+// scales and noises.
+std::set<std::string> target_parameters(const Targets& t) {
+  std::set<std::string> ids;
+  for (const auto& k : t.kinematics) ids.insert(k.time_offset_parameter);
+  for (const auto& s : t.step_cycles)
+    for (const auto& o : s.observables) ids.insert({o.offset_parameter, o.scale_parameter, o.sigma_parameter});
+  ids.erase("");
+  return ids;
+}
+
 const FitParameter& find_parameter(const std::vector<FitParameter>& ps, const std::string& id) {
   return *std::find_if(ps.begin(), ps.end(), [&](const FitParameter& p) { return p.id == id; });
 }
@@ -83,12 +94,18 @@ ConditionsProblem::ConditionsProblem(const model::OdeModel& model, const std::ve
     const Condition& cond = ci == conditions.end() ? none : *ci;
     Part part;
     part.id = id;
-    // The shared parameters, less those the condition sets; then the condition's.
+    Targets t = targets_of(targets, id);
+    const std::set<std::string> referenced = target_parameters(t);
+    // The shared parameters, less those the condition sets and the targets' own (offsets,
+    // scales, noises) that its targets do not use; then the condition's.
     std::vector<FitParameter> ps;
     std::vector<std::string> global;  // per entry of ps: its id in `parameters`
-    for (const auto& p : parameters)
-      if (!condition_ids.count(p.id) && !cond.parameter_ids.count(p.id) && !cond.values.count(p.id))
+    for (const auto& p : parameters) {
+      const bool of_model = model.parameters().contains(p.id) || is_parameter_pattern(p.id);
+      if (!condition_ids.count(p.id) && !cond.parameter_ids.count(p.id) && !cond.values.count(p.id) &&
+          (of_model || referenced.count(p.id)))
         ps.push_back(p), global.push_back(p.id);
+    }
     for (const auto& [name, pid] : cond.parameter_ids) {
       FitParameter q = find_parameter(parameters, pid);
       q.id = name;
@@ -102,7 +119,6 @@ ConditionsProblem::ConditionsProblem(const model::OdeModel& model, const std::ve
     ProblemSettings s = settings;
     s.condition = id;
     s.step_output_base = step_base;
-    Targets t = targets_of(targets, id);
     step_base += t.step_cycles.size();
     try {
       part.problem = std::make_unique<FitProblem>(model, ps, std::move(t), s);
@@ -122,7 +138,7 @@ ConditionsProblem::ConditionsProblem(const model::OdeModel& model, const std::ve
   for (size_t j = 0; j < est_.size(); ++j)
     if (!used_columns.count(j))
       throw Error((est_[j].origin.empty() ? "" : est_[j].origin + ": ") + "parameter '" + est_[j].id +
-                  "' is estimated but every condition sets it (give it to a condition, or leave it out)");
+                  "' is estimated but no condition uses it (every condition sets it, or no target names it)");
 }
 
 std::vector<double> ConditionsProblem::part_x(const Part& p, const double* x) const {

@@ -311,8 +311,8 @@ TEST(FitRecording, ConditionsRefuseWhatTheyCannotMap) {
             "the condition's parameter a name of its own");
   // The shared middle.fti.cpg_ext.g_app is set by the one condition: it would estimate nothing.
   EXPECT_EQ(message({a}, none),
-            "test: parameter 'middle.fti.cpg_ext.g_app' is estimated but every condition sets it (give it to a condition, or "
-            "leave it out)");
+            "test: parameter 'middle.fti.cpg_ext.g_app' is estimated but no condition uses it (every condition sets it, or no "
+            "target names it)");
   EXPECT_EQ(message({{"a", {{"middle.fti.cpg_ext.g_app", "gapp_a"}}, {{"middle.fti.nope", 1.0}}, "c.toml:3"}},
                     [](fit::Targets&, std::vector<fit::FitParameter>& ps) { ps.erase(ps.begin() + 2); }),
             "condition 'a': c.toml:3: unknown parameter 'middle.fti.nope'; `phasmid params CONFIG` lists them");
