@@ -14,6 +14,7 @@
 #include "config/config.hpp"
 #include "config/fit_section.hpp"
 #include "fit/fit_problem.hpp"
+#include "scenario/scenario.hpp"
 #include "fit/optimizer.hpp"
 #include "build_info.hpp"
 
@@ -25,7 +26,7 @@ struct Timing {
   fit::FitSummary last;
 };
 
-Timing time_fit(const fit::FitProblem& p, const fit::OptimizerOptions& o, int repeats) {
+Timing time_fit(const fit::ResidualProblem& p, const fit::OptimizerOptions& o, int repeats) {
   std::vector<double> t;
   Timing r{};
   for (int i = 0; i < repeats; ++i) {
@@ -50,12 +51,13 @@ int main(int argc, char** argv) {
   fit::FitOverrides overrides;
   if (argc > 3) overrides.data = argv[3];
   auto cfg = config::load_config(config_path);
-  auto model = config::build_model(cfg);
-  fit::FitSpec spec = fit::load_fit_spec(cfg, *model, overrides);
+  auto scenario = config::build_scenario(cfg, {});
+  fit::FitSpec spec = config::fit_spec(cfg, *scenario, overrides);
   if (std::getenv("BENCH_SIMULT")) spec.problem.solver.sensitivity_method = solver::SensitivityMethod::Simultaneous;
   if (std::getenv("BENCH_NOERRCON")) spec.problem.solver.sensitivity_error_control = false;
   if (std::getenv("BENCH_RTOL")) spec.problem.solver.rtol = spec.problem.solver.atol = std::atof(std::getenv("BENCH_RTOL"));
-  fit::FitProblem problem(*model, spec.parameters, spec.targets, spec.problem);
+  const auto made = scenario->make_fit(spec);  // with [fit.conditions], one problem per trial
+  const fit::ResidualProblem& problem = *made;
 
   // One simulation with and without sensitivities, for scale.
   std::vector<double> x = problem.start(), r(problem.num_residuals()), J(problem.num_residuals() * problem.num_parameters());

@@ -469,14 +469,33 @@
     });
     (s.step_cycles || []).forEach(function (sc, i) {
       var fmt = function (v, d) { return v === null || v === undefined ? '?' : Number(v).toFixed(d); };
+      // Matched: the model within one noise (sigma) of the animal's value.
+      var matched = function (m, d, s) {
+        if (m === null || m === undefined || d === null || d === undefined || !(s > 0)) return '';
+        var z = Math.abs(m - d) / s;
+        return z <= 1 ? ' (matched)' : ' (not matched: ' + z.toFixed(1) + ' σ off)';
+      };
       var summary = 'period ' + fmt(sc.data_period_ms, 0) + ' ms (animal, mean of ' + fmt(sc.data_steps, 0) + ' steps) vs ' +
-        fmt(sc.model_period_ms, 0) + ' ms (model, ' + fmt(sc.model_steps, 0) + ' steps); duty factor ' + fmt(sc.data_duty_factor, 2) +
-        ' vs ' + fmt(sc.model_duty_factor, 2);
+        fmt(sc.model_period_ms, 0) + ' ms (model, ' + fmt(sc.model_steps, 0) + ' steps)' +
+        matched(sc.model_period_ms, sc.data_period_ms, sc.period_sigma_ms) + '; duty factor ' + fmt(sc.data_duty_factor, 2) +
+        ' vs ' + fmt(sc.model_duty_factor, 2) + matched(sc.model_duty_factor, sc.data_duty_factor, sc.duty_factor_sigma);
+      // A profile is matched when its RMS difference is at most the animal's mean step-to-step SD.
+      var profileFit = function (c) {
+        var ss = 0, n = 0, sd = 0, m = 0;
+        c.data_mean.forEach(function (d, k) {
+          if (d !== null && c.model[k] !== null) { ss += (c.model[k] - d) * (c.model[k] - d); n++; }
+          if (c.data_sd[k] !== null) { sd += c.data_sd[k]; m++; }
+        });
+        if (!n || !m) return '';
+        var rms = Math.sqrt(ss / n), msd = sd / m;
+        return 'RMS difference ' + rms.toFixed(1) + '° against the animal\'s mean SD ' + msd.toFixed(1) + '°' +
+          (rms <= msd ? ' (matched)' : ' (not matched)') + '; ';
+      };
       (sc.channels || []).forEach(function (c) {
         var id = 'fig-fit-steps-' + i + '-' + safeId(c.name);
         var f = figure(grid, id, (sc.condition ? 'Trial ' + sc.condition + ': step' : 'Step') + ' cycle of ' + c.name + ' (' + (sc.leg || '') + ' against the model\'s ' + (sc.model_leg || '') +
           ' leg): the animal\'s mean ± SD over steps per phase bin (band, dashed) and the fitted model through its observable (line); ' +
-          summary + '.', 300);
+          profileFit(c) + summary + '.', 300);
         var at = function (ys) { return ys.map(function (y, k) { return { x: sc.phase[k], y: y }; }); };
         var lo = c.data_mean.map(function (m, k) { return c.data_sd[k] === null ? m : m - c.data_sd[k]; });
         var hi = c.data_mean.map(function (m, k) { return c.data_sd[k] === null ? m : m + c.data_sd[k]; });

@@ -200,6 +200,8 @@ void FitProblem::write_step_cycles(io::H5Writer& out, const solver::SolveResult&
     out.set_attribute(g, "model_period_ms", mc.period_ms);
     out.set_attribute(g, "data_duty_factor", t.data.duty_factor);
     out.set_attribute(g, "model_duty_factor", mc.duty_factor);
+    out.set_attribute(g, "period_sigma_ms", period_sigma(t));
+    out.set_attribute(g, "duty_factor_sigma", duty_sigma(t));
     out.set_attribute(g, "data_steps", static_cast<double>(t.data.kept()));
     out.set_attribute(g, "model_steps", static_cast<double>(mc.steps));
   }

@@ -50,7 +50,8 @@ json step_cycles(const H5Reader& r, json& out) {
     s["phase"] = nums(phase);
     for (const char* a : {"leg", "model_leg", "file", "condition"})
       s[a] = r.has_attribute(g, a) ? json(r.read_string_attribute(g, a)) : json(nullptr);
-    for (const char* a : {"data_period_ms", "model_period_ms", "data_duty_factor", "model_duty_factor", "data_steps", "model_steps"})
+    for (const char* a : {"data_period_ms", "model_period_ms", "data_duty_factor", "model_duty_factor", "data_steps", "model_steps",
+                          "period_sigma_ms", "duty_factor_sigma"})
       s[a] = r.has_attribute(g, a) ? json(r.read_double_attribute(g, a)) : json(nullptr);
     s["channels"] = json::array();
     for (const auto& c : r.children(g + "/data_mean")) {
