@@ -79,4 +79,7 @@ if [ "$err" = "$want" ] && [ ! -e noise.h5 ]; then echo "ok: estimated noise wit
 else echo "FAIL: estimated noise without absolute_sigma: '$err'"; fail=1; fi
 render fit && grep -q 'id="fig-fit-steps-0-L2.fti"' fit.dom && echo "ok report: step cycle of L2.fti" \
   || { echo "FAIL report: no step-cycle figure of L2.fti"; fail=1; }
+# The caption says what the model matches: here the period and duty factor, within their noise.
+grep -o 'steps) (matched); duty factor [0-9.]* vs [0-9.]* (matched)' fit.dom | head -1 | grep -q . &&
+  echo "ok report: period and duty factor matched" || { echo "FAIL report: no 'matched' in the caption"; fail=1; }
 exit $fail
