@@ -63,7 +63,8 @@ void check_conditions(const model::OdeModel& model, const std::vector<FitParamet
   for (const auto& c : conditions) {
     if (std::find(used.begin(), used.end(), c.id) == used.end())
       throw Error(c.origin + ": condition '" + c.id + "' has no targets (give a [[fit.recording]] condition = \"" + c.id + "\")");
-    for (const auto& [name, pid] : c.parameter_ids) {
+    for (const auto& mapped : c.parameter_ids) {
+      const std::string &name = mapped.first, &pid = mapped.second;
       if (std::none_of(parameters.begin(), parameters.end(), [&](const FitParameter& p) { return p.id == pid; }))
         throw Error(c.origin + ": condition '" + c.id + "' sets '" + name + "' to '" + pid + "', which is not in [fit.parameters]");
       if (model.parameters().contains(pid))
