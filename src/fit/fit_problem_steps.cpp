@@ -3,7 +3,6 @@
 // leg (features/model_step_cycle.hpp), through affine observables.
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 
 #include "common/error.hpp"
 #include "common/format.hpp"
@@ -27,10 +26,8 @@ size_t index_of(const std::vector<std::string>& names, const std::string& name, 
 // sigma_deg, else the recording's SD (floored).
 double bin_sigma(const StepCycleTarget& t, const Observable& o, size_t c, size_t k, double sigma) {
   if (sigma > 0) return sigma;
-  return o.sigma_deg > 0 ? o.sigma_deg : std::max(t.data.sd_deg[c][k], t.sigma_floor_deg);
+  return o.sigma_deg > 0 ? o.sigma_deg : t.bin_sd_deg(c, k);
 }
-double period_sigma(const StepCycleTarget& t) { return t.period_sigma_ms > 0 ? t.period_sigma_ms : t.data.period_sd_ms; }
-double duty_sigma(const StepCycleTarget& t) { return t.duty_factor_sigma > 0 ? t.duty_factor_sigma : t.data.duty_factor_sd; }
 
 }  // namespace
 
@@ -62,7 +59,7 @@ void FitProblem::label_step_cycles() {
       throw Error(t.origin + ": recording targets need t_end_ms above discard_ms in [fit] (the model's steps lie between)");
     if (!model_.contact_leg(t.model_leg)) throw Error(t.origin + ": the model has no ground contact for leg '" + t.model_leg + "'");
     if (!(t.sample_ms > 0)) throw Error(t.origin + ": sample_ms must be > 0");
-    if (!(period_sigma(t) > 0) || !(duty_sigma(t) > 0))
+    if (!(t.period_noise_ms() > 0) || !(t.duty_factor_noise() > 0))
       throw Error(t.origin + ": the recording's period and duty factor have no step-to-step SD (" +
                   std::to_string(t.data.kept()) + " step kept); give period_sigma_ms and duty_factor_sigma");
     StepCycleMap m;
@@ -156,11 +153,11 @@ size_t FitProblem::step_cycle_rows(const solver::SolveResult& res, const double*
       }
       if (m.sigma_est[o] >= 0) row = noise_rows(m, o, sigma, t.data.phase.size(), row, r, dth);
     }
-    r[row] = (mc.period_ms - t.data.mean_period_ms) / period_sigma(t);
-    if (sens && !dth.empty()) model_row(row, mc.dperiod_ms, 1 / period_sigma(t));
+    r[row] = (mc.period_ms - t.data.mean_period_ms) / t.period_noise_ms();
+    if (sens && !dth.empty()) model_row(row, mc.dperiod_ms, 1 / t.period_noise_ms());
     ++row;
-    r[row] = (mc.duty_factor - t.data.duty_factor) / duty_sigma(t);
-    if (sens && !dth.empty()) model_row(row, mc.dduty_factor, 1 / duty_sigma(t));
+    r[row] = (mc.duty_factor - t.data.duty_factor) / t.duty_factor_noise();
+    if (sens && !dth.empty()) model_row(row, mc.dduty_factor, 1 / t.duty_factor_noise());
     ++row;
   }
   return row;
@@ -200,8 +197,8 @@ void FitProblem::write_step_cycles(io::H5Writer& out, const solver::SolveResult&
     out.set_attribute(g, "model_period_ms", mc.period_ms);
     out.set_attribute(g, "data_duty_factor", t.data.duty_factor);
     out.set_attribute(g, "model_duty_factor", mc.duty_factor);
-    out.set_attribute(g, "period_sigma_ms", period_sigma(t));
-    out.set_attribute(g, "duty_factor_sigma", duty_sigma(t));
+    out.set_attribute(g, "period_sigma_ms", t.period_noise_ms());
+    out.set_attribute(g, "duty_factor_sigma", t.duty_factor_noise());
     out.set_attribute(g, "data_steps", static_cast<double>(t.data.kept()));
     out.set_attribute(g, "model_steps", static_cast<double>(mc.steps));
   }

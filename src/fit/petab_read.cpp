@@ -15,8 +15,6 @@
 namespace phasmid::fit {
 namespace {
 
-const std::string kNoisePlaceholder = "noiseParameter1_";
-
 bool parse_number(const std::string& s, double& v) {
   if (s.empty()) return false;
   char* end = nullptr;
@@ -88,7 +86,7 @@ ObservableRow parse_observable(const TextRow& row, const std::map<std::string, s
   r.leg = name.substr(0, name.find('.'));
   const bool period = f.rfind("period_ms(", 0) == 0, duty = f.rfind("duty_factor(", 0) == 0;
   double v = 0;
-  r.per_measurement = noise == kNoisePlaceholder + r.id;
+  r.per_measurement = noise == std::string(kPetabNoisePlaceholder) + r.id;
   if (period || duty) {
     r.kind = period ? ObservableRow::Period : ObservableRow::Duty;
     if (f.back() != ')' || name != r.leg + (period ? ".period" : ".duty_factor"))
@@ -96,7 +94,7 @@ ObservableRow parse_observable(const TextRow& row, const std::map<std::string, s
                   (period ? ".period: period_ms(<model leg>))" : ".duty_factor: duty_factor(<model leg>))"));
     r.model_leg = f.substr(f.find('(') + 1, f.size() - f.find('(') - 2);
     if (!r.per_measurement && !(parse_number(noise, r.fixed_noise) && r.fixed_noise > 0))
-      throw Error(r.where + ": noiseFormula '" + noise + "' of a period or duty factor must be a number > 0 or " + kNoisePlaceholder + r.id);
+      throw Error(r.where + ": noiseFormula '" + noise + "' of a period or duty factor must be a number > 0 or " + std::string(kPetabNoisePlaceholder) + r.id);
     return r;
   }
   parse_angle_formula(f, r.where, r);
@@ -105,7 +103,7 @@ ObservableRow parse_observable(const TextRow& row, const std::map<std::string, s
   if (r.per_measurement) return r;
   if (parse_number(noise, v) && v > 0) r.o.sigma_deg = v;
   else if (is_identifier(noise)) r.o.sigma_parameter = noise;
-  else throw Error(r.where + ": noiseFormula '" + noise + "' is neither a number > 0, a parameter id nor " + kNoisePlaceholder + r.id);
+  else throw Error(r.where + ": noiseFormula '" + noise + "' is neither a number > 0, a parameter id nor " + std::string(kPetabNoisePlaceholder) + r.id);
   return r;
 }
 

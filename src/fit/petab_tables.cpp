@@ -13,8 +13,6 @@
 namespace phasmid::fit {
 namespace {
 
-const char* kNoisePlaceholder = "noiseParameter1_";
-
 std::string num(double v) {
   char b[40];
   std::snprintf(b, sizeof b, "%.17g", v);
@@ -27,9 +25,6 @@ std::string id_of(const std::string& name) {
   return s;
 }
 
-// The effective noises of a recording (as FitProblem uses them): bins, period, duty factor.
-double period_noise(const StepCycleTarget& t) { return t.period_sigma_ms > 0 ? t.period_sigma_ms : t.data.period_sd_ms; }
-double duty_noise(const StepCycleTarget& t) { return t.duty_factor_sigma > 0 ? t.duty_factor_sigma : t.data.duty_factor_sd; }
 
 size_t channel_index(const StepCycleTarget& t, const Observable& o) {
   const auto it = std::find(t.data.channels.begin(), t.data.channels.end(), o.data_channel);
@@ -99,21 +94,21 @@ PetabTables format_petab(const Targets& targets, const std::vector<Condition>& c
       obs << id << '\t' << o.data_channel << '\t' << num(o.sign) << " * "
           << (o.scale_parameter.empty() ? num(o.scale) : o.scale_parameter) << " * " << o.model_channel << " + "
           << (o.offset_parameter.empty() ? num(o.offset_deg) : o.offset_parameter) << '\t'
-          << (!o.sigma_parameter.empty() ? o.sigma_parameter : per_bin ? kNoisePlaceholder + id : num(o.sigma_deg))
+          << (!o.sigma_parameter.empty() ? o.sigma_parameter : per_bin ? kPetabNoisePlaceholder + id : num(o.sigma_deg))
           << "\tlin\tnormal\n";
       const size_t c = channel_index(t, o);
       for (size_t k = 0; k < t.data.phase.size(); ++k)
         meas << id << '\t' << cond << '\t' << num(t.data.mean_deg[c][k]) << '\t'
              << num(t.data.phase[k] * t.data.mean_period_ms) << '\t'
-             << (per_bin ? num(std::max(t.data.sd_deg[c][k], t.sigma_floor_deg)) : "") << '\n';
+             << (per_bin ? num(t.bin_sd_deg(c, k)) : "") << '\n';
     }
     for (const char* what : {"period", "duty_factor"}) {
       const bool period = what[0] == 'p';
       const std::string id = t.leg + "_" + what + suffix;
       obs << id << '\t' << t.leg << '.' << what << '\t' << (period ? "period_ms(" : "duty_factor(") << t.model_leg << ")\t"
-          << kNoisePlaceholder << id << "\tlin\tnormal\n";
+          << kPetabNoisePlaceholder << id << "\tlin\tnormal\n";
       meas << id << '\t' << cond << '\t' << num(period ? t.data.mean_period_ms : t.data.duty_factor) << "\tinf\t"
-           << num(period ? period_noise(t) : duty_noise(t)) << '\n';
+           << num(period ? t.period_noise_ms() : t.duty_factor_noise()) << '\n';
     }
   }
   return {obs.str(), meas.str(), conditions_table(targets, conditions)};

@@ -21,6 +21,9 @@
 
 namespace phasmid::fit {
 
+// noiseFormula of an observable whose noise is each measurement's noiseParameters.
+inline constexpr const char* kPetabNoisePlaceholder = "noiseParameter1_";
+
 struct PetabTables {
   std::string observables, measurements, conditions;  // TSV texts
 };

@@ -11,6 +11,7 @@
 //    and the period and duty factor over their sigmas.
 //  - KinematicTarget: a recorded angle trajectory, r_k = (model(t_k + offset) - data_k) / sigma,
 //    with an optional time offset that is itself a fitted parameter.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,11 @@ struct StepCycleTarget {
   double sample_ms = 2;          // spacing of the model outputs the profiles interpolate
   std::string condition;         // PEtab's simulationConditionId (fit/condition_problem.hpp); empty: none
   std::string origin, file;
+  // The noises the residuals use where an observable gives none: the given sigma, else the
+  // recording's step-to-step SD (per bin of channel c floored at sigma_floor_deg).
+  double period_noise_ms() const { return period_sigma_ms > 0 ? period_sigma_ms : data.period_sd_ms; }
+  double duty_factor_noise() const { return duty_factor_sigma > 0 ? duty_factor_sigma : data.duty_factor_sd; }
+  double bin_sd_deg(size_t c, size_t k) const { return std::max(data.sd_deg[c][k], sigma_floor_deg); }
 };
 
 struct Targets {
