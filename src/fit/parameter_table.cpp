@@ -55,10 +55,29 @@ double dtheta_dx(Scale s, double x) {
 }
 
 namespace {
+// Iterative, with backtracking to the last '*' only: a '*' that matched too little is
+// extended by one character, and earlier stars never need revisiting (any later match they
+// allow, the last star allows too). Time O(|pat| |s|); the recursive form was exponential in
+// the number of stars ("a*a*a*...b" against "aaaa..."), an id a user or a file can supply.
 bool glob_match(const char* pat, const char* s) {
-  if (*pat == '\0') return *s == '\0';
-  if (*pat == '*') return glob_match(pat + 1, s) || (*s && glob_match(pat, s + 1));
-  return *s && (*pat == '?' || *pat == *s) && glob_match(pat + 1, s + 1);
+  const char* star = nullptr;  // position after the last '*' seen
+  const char* resume = nullptr;  // where in s that star's match would end next
+  while (*s) {
+    if (*pat == '*') {
+      star = ++pat;
+      resume = s;
+    } else if (*pat != '\0' && (*pat == '?' || *pat == *s)) {
+      ++pat;
+      ++s;
+    } else if (star) {
+      pat = star;
+      s = ++resume;
+    } else {
+      return false;
+    }
+  }
+  while (*pat == '*') ++pat;
+  return *pat == '\0';
 }
 }  // namespace
 

@@ -92,6 +92,26 @@ TEST(PetabTable, MalformedInputNamesFileAndLine) {
   EXPECT_ERROR(fit::parse_parameter_table("parameterId\tlowerBound\n", "p.tsv"), "p.tsv:1: parameter table lacks column 'parameterScale'");
 }
 
+TEST(ParameterPattern, StarsAndQuestionMarksMatchAsDocumented) {
+  using fit::parameter_id_matches;
+  EXPECT_TRUE(parameter_id_matches("switch.S?.at_400ms", "switch.SL.at_400ms"));
+  EXPECT_FALSE(parameter_id_matches("switch.S?.at_400ms", "switch.S.at_400ms"));
+  EXPECT_TRUE(parameter_id_matches("*.k_E.*", "middle.fti.k_E.flexion"));
+  EXPECT_FALSE(parameter_id_matches("*.k_E.*", "middle.fti.k_F.flexion"));
+  EXPECT_TRUE(parameter_id_matches("middle.*", "middle."));  // '*' matches the empty run
+  EXPECT_TRUE(parameter_id_matches("a*b*c", "axxbyybzc"));   // the last 'b' and 'c' decide
+  EXPECT_FALSE(parameter_id_matches("a*b*c", "axxcyyb"));  // no c after the last b
+  EXPECT_TRUE(parameter_id_matches("**?", "x"));
+  EXPECT_FALSE(parameter_id_matches("**?", ""));
+  EXPECT_TRUE(parameter_id_matches("middle.fti.k_E", "middle.fti.k_E"));
+  EXPECT_FALSE(parameter_id_matches("middle.fti.k_E", "middle.fti.k_E.flexion"));
+  // Many stars against a long name that fails only at its end: a backtracking matcher takes
+  // exponential time on this (the fuzzer found it, fuzz/regressions/config/timeout-e41ee0...).
+  const std::string stars = "middle.fti" + std::string(40, '*') + ".b_v";
+  EXPECT_FALSE(parameter_id_matches(stars, "middle.fti." + std::string(200, 'x') + ".b_w"));
+  EXPECT_TRUE(parameter_id_matches(stars, "middle.fti." + std::string(200, 'x') + ".b_v"));
+}
+
 TEST(FitConfig, ParsesTargetsInlineParametersAndRejectsUnknownKeys) {
   auto cfg = config::parse_config(R"(
 [model]
