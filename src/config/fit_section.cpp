@@ -82,9 +82,26 @@ std::set<std::string> sets_named(const config::Config& cfg, const toml::table& f
 }
 
 bool is_param_spec(const toml::table& t) {
-  for (const char* k : {"scale", "lower", "upper", "nominal", "estimate"})
+  for (const char* k : {"scale", "lower", "upper", "nominal", "estimate", "prior", "prior_parameters"})
     if (t.contains(k)) return true;
   return false;
+}
+
+// prior = "normal", prior_parameters = [mean, sd]: PEtab's objectivePriorType and
+// objectivePriorParameters (fit/prior.hpp), checked by the same parser.
+Prior inline_prior(const config::Config& cfg, const toml::table& t) {
+  const toml::node* type = t.get("prior");
+  const toml::node* params = t.get("prior_parameters");
+  if (!type && !params) return Prior{};
+  if (!type) throw Error(where(cfg, *params) + ": prior_parameters without prior");
+  if (!params) throw Error(where(cfg, *type) + ": prior needs prior_parameters = [a, b]");
+  const toml::array* a = params->as_array();
+  if (!a || a->size() != 2)
+    throw Error(where(cfg, *params) + ": prior_parameters must be a list of two numbers [a, b]");
+  Prior p;
+  p.a = number(cfg, *a->get(0), "prior_parameters");
+  p.b = number(cfg, *a->get(1), "prior_parameters");
+  return parse_prior(text(cfg, *type, "prior"), format_prior_parameters({true, p.type, p.a, p.b}), where(cfg, *type));
 }
 
 void inline_parameters(const config::Config& cfg, const toml::table& t, const std::string& prefix,
@@ -97,7 +114,8 @@ void inline_parameters(const config::Config& cfg, const toml::table& t, const st
       inline_parameters(cfg, *sub, name, model_value, out);
       continue;
     }
-    check_keys(cfg, *sub, "fit.parameters." + name, {"scale", "lower", "upper", "nominal", "estimate"});
+    check_keys(cfg, *sub, "fit.parameters." + name,
+               {"scale", "lower", "upper", "nominal", "estimate", "prior", "prior_parameters"});
     FitParameter p;
     p.id = name;
     p.origin = where(cfg, v);
@@ -118,6 +136,7 @@ void inline_parameters(const config::Config& cfg, const toml::table& t, const st
     if (auto n = sub->get("upper")) p.upper = number(cfg, *n, "upper");
     else if (p.estimate) throw Error(p.origin + ": estimated parameter '" + name + "' needs upper");
     else p.upper = p.nominal;
+    p.prior = inline_prior(cfg, *sub);
     validate(p);
     out.emplace_back(v.source().begin.line, p);
   }

@@ -69,6 +69,7 @@ const std::vector<std::string>& known_sections() {
       "model", "parameters", "simulation", "triggers", "sensitivity", "fit", "sweep",
       "gsa",           // [gsa] of `phasmid gsa`
       "continuation",  // [continuation] of `phasmid continue`
+      "sample",        // [sample] of `phasmid sample`
   };
   return sections;
 }

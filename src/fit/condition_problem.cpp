@@ -114,7 +114,7 @@ ConditionsProblem::ConditionsProblem(const model::OdeModel& model, const std::ve
       part.mapped.push_back(name), part.fit_ids.push_back(pid), part.fixed.push_back(q.nominal);
     }
     for (const auto& [name, value] : cond.values) {
-      ps.push_back({name, Scale::Lin, value, value, value, false, cond.origin}), global.push_back("");
+      ps.push_back({name, Scale::Lin, value, value, value, false, cond.origin, {}}), global.push_back("");
       part.mapped.push_back(name), part.fit_ids.push_back(""), part.fixed.push_back(value);
     }
     ProblemSettings s = settings;

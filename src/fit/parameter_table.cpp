@@ -131,6 +131,8 @@ std::vector<FitParameter> parse_parameter_table(const std::string& text, const s
     if (est == "1") p.estimate = true;
     else if (est == "0") p.estimate = false;
     else throw Error(where + ": estimate must be 0 or 1, got '" + est + "'");
+    auto optional = [&](const char* c) { return col.count(c) ? row.cells[col[c]] : std::string(); };
+    p.prior = parse_prior(optional("objectivePriorType"), optional("objectivePriorParameters"), where);
     validate(p);
     out.push_back(p);
   }
@@ -145,10 +147,16 @@ std::vector<FitParameter> read_parameter_table(const std::string& path) {
 std::string format_parameter_table(const std::vector<FitParameter>& params) {
   std::ostringstream os;
   os.precision(12);
-  os << "parameterId\tparameterScale\tlowerBound\tupperBound\tnominalValue\testimate\n";
-  for (auto& p : params)
+  bool priors = false;
+  for (auto& p : params) priors = priors || p.prior.declared;
+  os << "parameterId\tparameterScale\tlowerBound\tupperBound\tnominalValue\testimate"
+     << (priors ? "\tobjectivePriorType\tobjectivePriorParameters" : "") << "\n";
+  for (auto& p : params) {
     os << p.id << '\t' << scale_name(p.scale) << '\t' << p.lower << '\t' << p.upper << '\t' << p.nominal << '\t'
-       << (p.estimate ? 1 : 0) << '\n';
+       << (p.estimate ? 1 : 0);
+    if (priors) os << '\t' << (p.prior.declared ? prior_name(p.prior.type) : "") << '\t' << format_prior_parameters(p.prior);
+    os << '\n';
+  }
   return os.str();
 }
 

@@ -6,11 +6,10 @@
 #include <string>
 #include <vector>
 
-namespace phasmid::fit {
+#include "fit/prior.hpp"
+#include "fit/scale.hpp"
 
-enum class Scale { Lin, Log, Log10 };
-Scale parse_scale(const std::string& s);  // "lin" | "log" | "log10"; throws Error otherwise
-const char* scale_name(Scale s);
+namespace phasmid::fit {
 
 struct FitParameter {
   std::string id;          // phasmid parameter name, or a data time-offset parameter
@@ -20,16 +19,13 @@ struct FitParameter {
   double nominal = 0.0;    // start value (estimated) or fixed value (not estimated)
   bool estimate = true;
   std::string origin;      // "params.tsv:4" or "cfg.toml:12", for error messages
+  Prior prior;             // objectivePriorType/objectivePriorParameters (samplers only)
 };
 
-// theta <-> x and d theta / d x.
-double to_scaled(Scale s, double theta);
-double from_scaled(Scale s, double x);
-double dtheta_dx(Scale s, double x);
-
 // Reads a PEtab parameter table (tab-separated, header line naming the columns; required:
-// parameterId, parameterScale, lowerBound, upperBound, nominalValue, estimate; other columns
-// are ignored). Errors are one line naming file:line.
+// parameterId, parameterScale, lowerBound, upperBound, nominalValue, estimate; optional:
+// objectivePriorType, objectivePriorParameters (fit/prior.hpp); other columns are ignored).
+// Errors are one line naming file:line.
 std::vector<FitParameter> read_parameter_table(const std::string& path);
 std::vector<FitParameter> parse_parameter_table(const std::string& text, const std::string& origin);
 
