@@ -28,6 +28,7 @@ void read_key(const Config& cfg, const std::string& key, const toml::node& n, sa
   else if (key == "seed") o.seed = static_cast<std::uint64_t>(integer(cfg, n, key, 0, INT64_MAX));
   else if (key == "target_acceptance") o.proposal.target_acceptance = number_in(cfg, n, key, 0.01, 0.99);
   else if (key == "threads") o.threads = static_cast<int>(integer(cfg, n, key, 0, 256));
+  else if (key == "evidence") o.prior_level = boolean(cfg, n, key);
   else if (key == "start") {
     try {
       s.start = sample::parse_start(text(cfg, n, key));
@@ -51,12 +52,14 @@ sample::SampleSpec sample_spec(const Config& cfg, const SampleOverrides& ov) {
   if (sn && !t) throw Error(where(cfg, *sn) + ": 'sample' must be a table ([sample])");
   if (t) {
     check_keys(cfg, *t, "sample", {"sampler", "chains", "draws", "temperatures", "max_temperature", "seed", "start",
-                                   "target_acceptance", "threads"});
+                                   "target_acceptance", "threads", "evidence"});
     for (auto&& [k, n] : *t) read_key(cfg, std::string(k.str()), n, s, tempering);
     const toml::node* temps = t->get("temperatures");
     if (tempering && !temps) s.sampler.temperatures = 4;
     if (!tempering && temps && s.sampler.temperatures > 1)
       throw Error(where(cfg, *temps) + ": [sample] temperatures > 1 needs sampler = \"parallel_tempering\"");
+    if (s.sampler.prior_level && !tempering)
+      throw Error(where(cfg, *t->get("evidence")) + ": [sample] evidence = true needs sampler = \"parallel_tempering\"");
     if (tempering && s.sampler.temperatures < 2)
       throw Error(where(cfg, *temps) + ": [sample] sampler = \"parallel_tempering\" needs temperatures >= 2");
   }

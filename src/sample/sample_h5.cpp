@@ -60,6 +60,16 @@ void write_diagnostics(io::H5Writer& out, const SampleResult& res) {
   }
 }
 
+void write_evidence(io::H5Writer& out, const Evidence& e) {
+  if (!e.ok) return;
+  out.write_scalar("/sample/evidence/log_evidence", e.log_evidence, "1 (natural log, up to the fixed noises' constant)");
+  out.write_scalar("/sample/evidence/error", e.error(), "1");
+  out.write_scalar("/sample/evidence/mc_error", e.mc_error, "1");
+  out.write_scalar("/sample/evidence/discretisation_error", e.discretisation_error, "1");
+  out.write("/sample/evidence/betas", e.betas, "1 (chain 0's fixed ladder, coldest first)");
+  out.write("/sample/evidence/mean_log_likelihood", e.mean_log_likelihood, "1 (per level, mean over chains)");
+}
+
 void write_settings(io::H5Writer& out, const SampleSpec& spec, const SampleResult& res) {
   const SamplerOptions& o = spec.sampler;
   out.set_attribute("/sample", "sampler", o.temperatures > 1 ? std::string("parallel_tempering") : std::string("adaptive_metropolis"));
@@ -67,6 +77,8 @@ void write_settings(io::H5Writer& out, const SampleSpec& spec, const SampleResul
   out.set_attribute("/sample", "draws", static_cast<double>(o.draws));
   out.set_attribute("/sample", "temperatures", static_cast<double>(o.temperatures));
   out.set_attribute("/sample", "max_temperature", o.max_temperature);
+  out.set_attribute("/sample", "prior_level", o.prior_level ? 1.0 : 0.0);
+  out.set_attribute("/sample", "ladder_fixed_from", static_cast<double>(res.run.ladder_fixed_from));
   out.set_attribute("/sample", "seed", static_cast<double>(o.seed));
   out.set_attribute("/sample", "start", std::string(start_name(spec.start)));
   out.set_attribute("/sample", "target_acceptance", o.proposal.target_acceptance);
@@ -80,6 +92,7 @@ void write_sample_h5(io::H5Writer& out, const fit::ResidualProblem& problem, con
   write_parameters(out, problem);
   write_diagnostics(out, res);
   write_settings(out, spec, res);
+  write_evidence(out, res.evidence);
   out.write_string("/sample/summary/text", format_result(problem, spec, res));
 }
 

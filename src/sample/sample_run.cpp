@@ -149,6 +149,10 @@ void analyse(const fit::ResidualProblem& problem, SampleResult& result) {
   const std::size_t from = std::min(result.burn_in, r.draws / 2);
   if (result.burn_in >= r.draws)
     result.warnings.push_back("no burn-in found: every chain still drifts (Geweke); statistics are of the last half, run longer");
+  if (r.temperatures > 1 && r.betas[r.temperatures - 1] == 0.0) {
+    result.evidence = thermodynamic_integration(r, std::max(result.burn_in, r.ladder_fixed_from));
+    if (!result.evidence.ok) result.warnings.push_back("no model evidence: " + result.evidence.note);
+  }
   const auto names = problem.parameter_names();
   result.parameters.clear();
   for (std::size_t j = 0; j < r.dim; ++j) {
@@ -187,6 +191,11 @@ std::string format_result(const fit::ResidualProblem& problem, const SampleSpec&
     const ParameterSummary& s = res.parameters[j];
     std::snprintf(line, sizeof line, "  %-34s %12.5g %11.4g %12.5g %12.5g %8.0f %7.4f  %s\n", names[j].c_str(), s.mean, s.sd, s.q025,
                   s.q975, s.ess, s.rhat, problem.parameter_unit(j).c_str());
+    os << line;
+  }
+  if (res.evidence.ok) {
+    std::snprintf(line, sizeof line, "  log evidence %.6g +- %.2g (Monte Carlo %.2g, discretisation %.2g; up to the fixed noises' constant)\n",
+                  res.evidence.log_evidence, res.evidence.error(), res.evidence.mc_error, res.evidence.discretisation_error);
     os << line;
   }
   for (const auto& w : res.warnings) os << "phasmid sample: warning: " << w << "\n";

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fit/fit_spec.hpp"
+#include "sample/evidence.hpp"
 #include "sample/sampler.hpp"
 
 namespace phasmid::io {
@@ -40,6 +41,7 @@ struct SampleResult {
   std::vector<ParameterSummary> parameters;  // per estimated parameter
   std::vector<std::string> warnings;         // one line each (docs/sampling.md)
   std::vector<double> start_x;               // the chains' first start (scaled)
+  Evidence evidence;                         // with a prior level (SamplerOptions::prior_level)
 };
 
 // Throws Error if the fit is not a likelihood (absolute_sigma false) or the problem has no

@@ -22,6 +22,8 @@ bool SamplerOptions::IsValid(std::string* why) const {
   if (temperatures > 1 && !(max_temperature > 1 && std::isfinite(max_temperature)))
     return fail("max_temperature must be a finite number above 1");
   if (!(ladder_t0 > 0) || !(ladder_nu > 0)) return fail("the ladder's t0 and nu must be positive");
+  if (!(ladder_adaptation >= 0 && ladder_adaptation <= 1)) return fail("the ladder's adaptation share must lie in [0, 1]");
+  if (prior_level && temperatures < 2) return fail("a prior level (evidence) needs temperatures >= 2");
   if (threads < 0) return fail("threads must not be negative");
   return proposal.IsValid(why);
 }
@@ -83,7 +85,7 @@ void adapt_ladder(Chain& c, const std::vector<double>& a, std::size_t t, const S
   for (std::size_t k = 1; k + 1 < k_levels; ++k) c.levels[k].beta = 1.0 / next[k];
 }
 
-void propose_swaps(Chain& c, std::size_t t, const SamplerOptions& o) {
+void propose_swaps(Chain& c, std::size_t t, bool adapt, const SamplerOptions& o) {
   const std::size_t k_levels = c.levels.size();
   if (k_levels < 2) return;
   std::vector<double> a(k_levels - 1, 0.0);
@@ -97,7 +99,14 @@ void propose_swaps(Chain& c, std::size_t t, const SamplerOptions& o) {
       c.swap_accepted[k] += 1;
     }
   }
-  adapt_ladder(c, a, t, o);
+  if (adapt) adapt_ladder(c, a, t, o);
+}
+
+// Geometric from T = 1 to max_temperature over the finite levels; beta = 0 for a prior level.
+double initial_beta(const SamplerOptions& o, std::size_t k) {
+  const std::size_t finite = o.prior_level ? o.temperatures - 1 : o.temperatures;
+  if (k >= finite) return 0.0;
+  return finite == 1 ? 1.0 : std::pow(o.max_temperature, -double(k) / double(finite - 1));
 }
 
 std::vector<Chain> initial_chains(const LogPosterior& target, const SamplerOptions& o,
@@ -110,10 +119,8 @@ std::vector<Chain> initial_chains(const LogPosterior& target, const SamplerOptio
       throw Error("chain " + std::to_string(c) + ": the start has zero posterior density (" +
                   (v0.failed ? "the model run failed" : "outside the bounds or the prior's support") + ")");
     Chain ch{{}, stream(o.seed, c, o.temperatures), std::vector<double>(o.temperatures - 1, 0.0)};
-    for (std::size_t k = 0; k < o.temperatures; ++k) {
-      const double temp = o.temperatures == 1 ? 1.0 : std::pow(o.max_temperature, double(k) / double(o.temperatures - 1));
-      ch.levels.push_back(Level{x0, v0, AdaptiveMetropolis(x0, cov0, o.proposal), stream(o.seed, c, k), 1.0 / temp, 0});
-    }
+    for (std::size_t k = 0; k < o.temperatures; ++k)
+      ch.levels.push_back(Level{x0, v0, AdaptiveMetropolis(x0, cov0, o.proposal), stream(o.seed, c, k), initial_beta(o, k), 0});
     chains.push_back(std::move(ch));
   }
   return chains;
@@ -143,6 +150,9 @@ void record(SamplerResult& r, const std::vector<Chain>& chains, std::size_t i) {
     std::copy(l.x.data(), l.x.data() + l.x.size(), r.x.begin() + static_cast<long>((c * r.draws + i) * r.dim));
     r.log_prior[c * r.draws + i] = l.v.log_prior;
     r.log_likelihood[c * r.draws + i] = l.v.log_likelihood;
+    if (r.temperatures > 1)
+      for (std::size_t k = 0; k < r.temperatures; ++k)
+        r.level_log_likelihood[(c * r.temperatures + k) * r.draws + i] = chains[c].levels[k].v.log_likelihood;
   }
 }
 
@@ -170,10 +180,12 @@ SamplerResult run_sampler(const LogPosterior& target, const SamplerOptions& o,
   r.x.assign(r.chains * r.draws * r.dim, 0.0);
   r.log_prior.assign(r.chains * r.draws, 0.0);
   r.log_likelihood.assign(r.chains * r.draws, 0.0);
+  if (r.temperatures > 1) r.level_log_likelihood.assign(r.chains * r.temperatures * r.draws, 0.0);
+  r.ladder_fixed_from = r.temperatures > 2 ? static_cast<std::size_t>(std::ceil(o.ladder_adaptation * double(o.draws))) : 0;
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
   for (std::size_t i = 0; i < o.draws; ++i) {
     r.failed_evaluations += step_all(target, levels, threads);
-    for (Chain& c : chains) propose_swaps(c, i, o);
+    for (Chain& c : chains) propose_swaps(c, i, i < r.ladder_fixed_from, o);
     record(r, chains, i);
     if (progress) progress(i + 1);
   }

@@ -8,8 +8,9 @@
 // T = 1 to max_temperature and adapts (Vousden, Farr & Mandel 2016, eq. 13-15): for the
 // levels between the coldest and the hottest, log(T_k - T_k-1) moves by
 // kappa_t (A_k-1 - A_k) with A the swap acceptances of the step and
-// kappa_t = t0 / (nu (t + t0)), which evens out the acceptance of all pairs. Only beta = 1
-// draws are the posterior's.
+// kappa_t = t0 / (nu (t + t0)), which evens out the acceptance of all pairs, during the first
+// `ladder_adaptation` share of the steps. Only beta = 1 draws are the posterior's; the others'
+// log-likelihoods are kept for thermodynamic integration (sample/evidence.hpp).
 //
 // Reproducible: every level has its own random stream from (seed, chain, level) and every
 // chain one for its swaps, so the draws do not depend on the number of threads evaluating the
@@ -31,8 +32,14 @@ struct SamplerOptions {
   std::size_t draws = 2000;        // steps per chain, burn-in included
   std::size_t temperatures = 1;    // levels per chain; > 1: parallel tempering
   double max_temperature = 50.0;   // the hottest level's T = 1/beta (fixed)
+  // The hottest level samples the prior (beta = 0; Vousden et al.'s T = infinity) and the
+  // others run from T = 1 to max_temperature: what thermodynamic integration needs.
+  bool prior_level = false;
   double ladder_t0 = 1000.0;       // Vousden et al.'s t0 and nu
   double ladder_nu = 100.0;
+  // The ladder adapts over this share of the draws and then stays fixed, so that the draws
+  // after it sample fixed tempered posteriors (thermodynamic integration averages them).
+  double ladder_adaptation = 0.5;
   std::uint64_t seed = 1;
   int threads = 0;                 // 0: OpenMP's default
   AdaptiveMetropolisOptions proposal;
@@ -47,6 +54,8 @@ struct SamplerResult {
   std::vector<double> acceptance;      // chains: acceptance rate of the beta = 1 level
   std::vector<double> betas;           // chains x temperatures, the final ladder
   std::vector<double> swap_acceptance; // chains x (temperatures - 1), over the whole run
+  std::vector<double> level_log_likelihood;  // chains x temperatures x draws (temperatures > 1)
+  std::size_t ladder_fixed_from = 0;   // the first step after the ladder's adaptation
   std::size_t failed_evaluations = 0;  // model runs that failed (rejected proposals)
   double at(std::size_t c, std::size_t i, std::size_t j) const { return x[(c * draws + i) * dim + j]; }
 };

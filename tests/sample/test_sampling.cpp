@@ -10,6 +10,7 @@
 #include "fit/parameter_table.hpp"
 #include "fit/residual_problem.hpp"
 #include "sample/diagnostics.hpp"
+#include "sample/evidence.hpp"
 #include "sample/sample_run.hpp"
 #include "sample/sampler.hpp"
 
@@ -231,6 +232,40 @@ TEST(Sampling, LinearGaussianPosteriorMeanAndCovarianceInClosedForm) {
   // Adaptive Metropolis tunes itself to the target acceptance.
   for (double a : r.acceptance) EXPECT_NEAR(a, 0.234, 0.05);
   EXPECT_TRUE(res.warnings.empty());
+}
+
+TEST(Sampling, ThermodynamicIntegrationGivesTheClosedFormEvidence) {
+  // y = A theta + noise (sd s), theta ~ N(0, 2^2 I): y ~ N(0, s^2 I + 4 A A^T), whose density
+  // at the data is the evidence. phasmid's log L leaves out -(m/2) ln(2 pi s^2).
+  Eigen::MatrixXd A(5, 2);
+  A << 1, 0.5, 0.3, 1, -0.7, 0.2, 1.2, -0.4, 0.1, 0.9;
+  Eigen::VectorXd y(5);
+  y << 1.1, -0.3, 0.4, 2.0, 0.2;
+  const double s = 0.5;
+  const Eigen::MatrixXd C = s * s * Eigen::MatrixXd::Identity(5, 5) + 4.0 * A * A.transpose();
+  const double log_z = -0.5 * y.dot(C.ldlt().solve(y)) - 0.5 * std::log(C.determinant()) - 2.5 * std::log(2 * M_PI);
+  const double expected = log_z + 2.5 * std::log(2 * M_PI * s * s);
+  const fit::Prior prior = fit::parse_prior("normal", "0;2", "test");
+  FunctionProblem problem({parameter("a", -40, 40, prior), parameter("b", -40, 40, prior)}, 5, [&](const std::vector<double>& t) {
+    const Eigen::VectorXd r = (A * Eigen::Vector2d(t[0], t[1]) - y) / s;
+    return std::vector<double>(r.data(), r.data() + r.size());
+  });
+  fit::FitSpec fs;
+  fs.absolute_sigma = true;
+  sample::SampleSpec spec;
+  spec.sampler.chains = 2, spec.sampler.draws = 20000, spec.sampler.seed = 4;
+  spec.sampler.temperatures = 12, spec.sampler.max_temperature = 1e4, spec.sampler.prior_level = true;
+  const sample::SampleResult res = sample::run_sampling(problem, fs, spec);
+  const sample::Evidence& e = res.evidence;
+  ASSERT_TRUE(e.ok) << e.note;
+  EXPECT_NEAR(e.log_evidence, expected, 4 * e.error());
+  EXPECT_LT(e.error(), 0.1);  // informative: a Bayes factor of 1.1 is resolved
+  EXPECT_EQ(e.betas.front(), 1.0);
+  EXPECT_EQ(e.betas.back(), 0.0);
+  // The prior level's mean log L is E_prior[-1/2 |A theta - y|^2 / s^2], in closed form:
+  // -1/2 (|y|^2 + 4 tr(A^T A)) / s^2.
+  const double prior_mean = -0.5 * (y.squaredNorm() + 4.0 * (A.transpose() * A).trace()) / (s * s);
+  EXPECT_NEAR(e.mean_log_likelihood.back() / prior_mean, 1.0, 0.1);
 }
 
 // Bimodal: r = (x^2 - 1) / w with a N(0.3, 1) prior: modes at -1 and +1 (sd w/2) behind a
