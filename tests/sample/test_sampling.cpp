@@ -187,23 +187,35 @@ TEST(Diagnostics, SplitRhatAndBurnInSeeDriftingChains) {
   EXPECT_TRUE(sample::diagnostic_warnings("k", 500, 1.005).empty());
 }
 
+// y = A theta + noise (sd s = 0.5), two parameters with normal priors N(0, 2^2), five data.
+struct LinearGaussian {
+  Eigen::MatrixXd A = (Eigen::MatrixXd(5, 2) << 1, 0.5, 0.3, 1, -0.7, 0.2, 1.2, -0.4, 0.1, 0.9).finished();
+  Eigen::VectorXd y = (Eigen::VectorXd(5) << 1.1, -0.3, 0.4, 2.0, 0.2).finished();
+  double s = 0.5;
+  fit::Prior prior = fit::parse_prior("normal", "0;2", "test");
+  FunctionProblem problem{{parameter("a", -40, 40, prior), parameter("b", -40, 40, prior)}, 5,
+                          [this](const std::vector<double>& t) {
+                            const Eigen::VectorXd r = (A * Eigen::Vector2d(t[0], t[1]) - y) / s;
+                            return std::vector<double>(r.data(), r.data() + r.size());
+                          }};
+  fit::FitSpec fs = [] {
+    fit::FitSpec f;
+    f.absolute_sigma = true;
+    return f;
+  }();
+};
+
 TEST(Sampling, LinearGaussianPosteriorMeanAndCovarianceInClosedForm) {
   // y = A theta + noise (sd 0.5), normal priors N(0, 2^2): the posterior is Gaussian with
   // covariance S = (A^T A / s^2 + I / 4)^-1 and mean S A^T y / s^2.
-  Eigen::MatrixXd A(5, 2);
-  A << 1, 0.5, 0.3, 1, -0.7, 0.2, 1.2, -0.4, 0.1, 0.9;
-  Eigen::VectorXd y(5);
-  y << 1.1, -0.3, 0.4, 2.0, 0.2;
-  const double s = 0.5;
+  LinearGaussian lg;
+  const Eigen::MatrixXd& A = lg.A;
+  const Eigen::VectorXd& y = lg.y;
+  const double s = lg.s;
   const Eigen::MatrixXd S = (A.transpose() * A / (s * s) + Eigen::MatrixXd::Identity(2, 2) / 4.0).inverse();
   const Eigen::VectorXd mu = S * A.transpose() * y / (s * s);
-  const fit::Prior prior = fit::parse_prior("normal", "0;2", "test");
-  FunctionProblem problem({parameter("a", -40, 40, prior), parameter("b", -40, 40, prior)}, 5, [&](const std::vector<double>& t) {
-    const Eigen::VectorXd r = (A * Eigen::Vector2d(t[0], t[1]) - y) / s;
-    return std::vector<double>(r.data(), r.data() + r.size());
-  });
-  fit::FitSpec fs;
-  fs.absolute_sigma = true;
+  const FunctionProblem& problem = lg.problem;
+  const fit::FitSpec& fs = lg.fs;
   sample::SampleSpec spec;
   spec.sampler.chains = 4, spec.sampler.draws = 20000, spec.sampler.seed = 11;
   const sample::SampleResult res = sample::run_sampling(problem, fs, spec);
@@ -237,21 +249,15 @@ TEST(Sampling, LinearGaussianPosteriorMeanAndCovarianceInClosedForm) {
 TEST(Sampling, ThermodynamicIntegrationGivesTheClosedFormEvidence) {
   // y = A theta + noise (sd s), theta ~ N(0, 2^2 I): y ~ N(0, s^2 I + 4 A A^T), whose density
   // at the data is the evidence. phasmid's log L leaves out -(m/2) ln(2 pi s^2).
-  Eigen::MatrixXd A(5, 2);
-  A << 1, 0.5, 0.3, 1, -0.7, 0.2, 1.2, -0.4, 0.1, 0.9;
-  Eigen::VectorXd y(5);
-  y << 1.1, -0.3, 0.4, 2.0, 0.2;
-  const double s = 0.5;
+  LinearGaussian lg;
+  const Eigen::MatrixXd& A = lg.A;
+  const Eigen::VectorXd& y = lg.y;
+  const double s = lg.s;
   const Eigen::MatrixXd C = s * s * Eigen::MatrixXd::Identity(5, 5) + 4.0 * A * A.transpose();
   const double log_z = -0.5 * y.dot(C.ldlt().solve(y)) - 0.5 * std::log(C.determinant()) - 2.5 * std::log(2 * M_PI);
   const double expected = log_z + 2.5 * std::log(2 * M_PI * s * s);
-  const fit::Prior prior = fit::parse_prior("normal", "0;2", "test");
-  FunctionProblem problem({parameter("a", -40, 40, prior), parameter("b", -40, 40, prior)}, 5, [&](const std::vector<double>& t) {
-    const Eigen::VectorXd r = (A * Eigen::Vector2d(t[0], t[1]) - y) / s;
-    return std::vector<double>(r.data(), r.data() + r.size());
-  });
-  fit::FitSpec fs;
-  fs.absolute_sigma = true;
+  const FunctionProblem& problem = lg.problem;
+  const fit::FitSpec& fs = lg.fs;
   sample::SampleSpec spec;
   spec.sampler.chains = 2, spec.sampler.draws = 20000, spec.sampler.seed = 4;
   spec.sampler.temperatures = 12, spec.sampler.max_temperature = 1e4, spec.sampler.prior_level = true;
