@@ -26,12 +26,6 @@ struct FitArgs {
   bool quiet = false, json = false;
 };
 
-// An integer option whose absence is not a value (FitOverrides' optionals); its range is
-// checked by fit::check_overrides, not here, so that Python's fit() gets the same message.
-void add_long(CLI::App& sub, const std::string& name, std::optional<long>& out, const std::string& help) {
-  sub.add_option_function<long>(name, [&out](const long& v) { out = v; }, help);
-}
-
 // The estimates on stdout: name, value, standard error (null where undefined), unit.
 void print_estimates_json(const fit::ResidualProblem& problem, const fit::FitResult& r) {
   auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };

@@ -26,10 +26,6 @@ struct SampleArgs {
   bool quiet = false;
 };
 
-void add_long(CLI::App& sub, const std::string& name, std::optional<long>& out, const std::string& help) {
-  sub.add_option_function<long>(name, [&out](const long& v) { out = v; }, help);
-}
-
 int run_sample_verb(const SampleArgs& a) {
   if (parallel::size() > 1) throw Error("phasmid sample runs in one process (its chains on threads, -j); not under mpirun yet");
   io::check_output_path(a.out, {a.config, a.fit.data, a.fit.parameters});

@@ -24,11 +24,6 @@ constexpr PriorName kPriorNames[] = {
     {PriorType::LogLaplace, "logLaplace"},
 };
 
-bool on_parameter_scale(PriorType t) {
-  return t == PriorType::ParameterScaleUniform || t == PriorType::ParameterScaleNormal ||
-         t == PriorType::ParameterScaleLaplace;
-}
-
 double parse_number(const std::string& s, const std::string& where) {
   try {
     size_t used = 0;
@@ -68,6 +63,11 @@ double log_density(const Prior& p, double v) {
   return -inf;
 }
 }  // namespace
+
+bool on_parameter_scale(PriorType t) {
+  return t == PriorType::ParameterScaleUniform || t == PriorType::ParameterScaleNormal ||
+         t == PriorType::ParameterScaleLaplace;
+}
 
 const char* prior_name(PriorType t) {
   for (const auto& n : kPriorNames)

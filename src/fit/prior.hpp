@@ -30,6 +30,7 @@ struct Prior {
 };
 
 const char* prior_name(PriorType t);
+bool on_parameter_scale(PriorType t);  // a density of x (parameterScale*), not of theta
 // type "" (empty cell) gives the undeclared default; parameters "a;b". Throws Error
 // "<where>: ..." for an unknown type, a malformed pair, or a non-positive sd/scale/width.
 Prior parse_prior(const std::string& type, const std::string& parameters, const std::string& where);

@@ -52,6 +52,11 @@ std::pair<double, double> within_and_pooled(const Chains& chains) {
 }
 }  // namespace
 
+Moments moments(const std::vector<double>& v) {
+  const double m = mean(v), n = static_cast<double>(v.size());
+  return {m, autocovariance(v, m, 0) * n / (n - 1)};
+}
+
 double effective_sample_size(const Chains& chains) {
   check_chains(chains);
   const size_t n = chains[0].size();

@@ -24,6 +24,11 @@ namespace phasmid::sample {
 
 using Chains = std::vector<std::vector<double>>;
 
+struct Moments {
+  double mean = 0, variance = 0;  // variance with n - 1
+};
+Moments moments(const std::vector<double>& v);  // v.size() >= 2
+
 double effective_sample_size(const Chains& chains);
 double split_rhat(const Chains& chains);
 double geweke_z(const std::vector<double>& chain);

@@ -40,14 +40,10 @@ std::vector<Level> levels_of(const SamplerResult& r, std::size_t c, std::size_t 
   std::vector<Level> out;
   for (std::size_t k = 0; k < r.temperatures; ++k) {
     const double* ll = &r.level_log_likelihood[(c * r.temperatures + k) * r.draws];
-    std::vector<double> kept(ll + from, ll + r.draws);
-    double m = 0, v = 0;
-    for (double x : kept) m += x;
-    m /= double(kept.size());
-    for (double x : kept) v += (x - m) * (x - m);
-    v /= double(kept.size() - 1);
+    const std::vector<double> kept(ll + from, ll + r.draws);
+    const Moments mo = moments(kept);
     const double ess = effective_sample_size({kept});
-    out.push_back({r.betas[c * r.temperatures + k], m, v, std::isfinite(ess) && ess > 0 ? v / ess : 0.0});
+    out.push_back({r.betas[c * r.temperatures + k], mo.mean, mo.variance, std::isfinite(ess) && ess > 0 ? mo.variance / ess : 0.0});
   }
   return out;
 }
@@ -55,15 +51,11 @@ std::vector<Level> levels_of(const SamplerResult& r, std::size_t c, std::size_t 
 
 Evidence thermodynamic_integration(const SamplerResult& r, std::size_t from) {
   Evidence e;
-  if (r.temperatures < 2 || r.level_log_likelihood.empty()) {
-    e.note = "thermodynamic integration needs tempered levels ([sample] evidence = true)";
+  // The ladder's adaptation never moves the hottest level, so a prior level stays at beta = 0.
+  if (!r.prior_level || r.level_log_likelihood.empty()) {
+    e.note = "thermodynamic integration needs tempered levels and a prior level at beta = 0 ([sample] evidence = true)";
     return e;
   }
-  for (std::size_t c = 0; c < r.chains; ++c)
-    if (r.betas[c * r.temperatures + r.temperatures - 1] != 0.0) {
-      e.note = "thermodynamic integration needs a prior level at beta = 0 ([sample] evidence = true)";
-      return e;
-    }
   if (r.draws < from + 4) {
     e.note = "no draws left after the burn-in and the ladder's adaptation";
     return e;

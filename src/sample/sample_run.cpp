@@ -55,9 +55,7 @@ double draw_law(const fit::Prior& p, std::mt19937_64& rng) {
 double draw_prior(const fit::FitParameter& p, std::mt19937_64& rng) {
   const double lo = fit::to_scaled(p.scale, p.lower), hi = fit::to_scaled(p.scale, p.upper);
   if (!p.prior.declared) return std::uniform_real_distribution<double>(lo, hi)(rng);
-  const bool on_x = p.prior.type == fit::PriorType::ParameterScaleUniform ||
-                    p.prior.type == fit::PriorType::ParameterScaleNormal ||
-                    p.prior.type == fit::PriorType::ParameterScaleLaplace;
+  const bool on_x = fit::on_parameter_scale(p.prior.type);
   for (int attempt = 0; attempt < 100000; ++attempt) {
     const double v = draw_law(p.prior, rng);
     const double x = on_x ? v : fit::to_scaled(p.scale, v);
@@ -149,7 +147,7 @@ void analyse(const fit::ResidualProblem& problem, SampleResult& result) {
   const std::size_t from = std::min(result.burn_in, r.draws / 2);
   if (result.burn_in >= r.draws)
     result.warnings.push_back("no burn-in found: every chain still drifts (Geweke); statistics are of the last half, run longer");
-  if (r.temperatures > 1 && r.betas[r.temperatures - 1] == 0.0) {
+  if (r.prior_level) {
     result.evidence = thermodynamic_integration(r, std::max(result.burn_in, r.ladder_fixed_from));
     if (!result.evidence.ok) result.warnings.push_back("no model evidence: " + result.evidence.note);
   }
@@ -161,11 +159,8 @@ void analyse(const fit::ResidualProblem& problem, SampleResult& result) {
     for (const auto& c : ch)
       for (double x : c) lin.push_back(fit::from_scaled(problem.estimated()[j].scale, x));
     ParameterSummary s;
-    double sum = 0, sq = 0;
-    for (double v : lin) sum += v;
-    s.mean = sum / double(lin.size());
-    for (double v : lin) sq += (v - s.mean) * (v - s.mean);
-    s.sd = std::sqrt(sq / double(lin.size() - 1));
+    const Moments mo = moments(lin);
+    s.mean = mo.mean, s.sd = std::sqrt(mo.variance);
     s.median = quantile(lin, 0.5), s.q025 = quantile(lin, 0.025), s.q975 = quantile(lin, 0.975);
     s.ess = effective_sample_size(ch);
     s.rhat = r.chains > 1 || ch[0].size() >= 8 ? split_rhat(ch) : NAN;

@@ -177,6 +177,7 @@ SamplerResult run_sampler(const LogPosterior& target, const SamplerOptions& o,
     for (Level& l : c.levels) levels.push_back(&l);
   SamplerResult r;
   r.chains = o.chains, r.draws = o.draws, r.dim = target.dim(), r.temperatures = o.temperatures;
+  r.prior_level = o.prior_level;
   r.x.assign(r.chains * r.draws * r.dim, 0.0);
   r.log_prior.assign(r.chains * r.draws, 0.0);
   r.log_likelihood.assign(r.chains * r.draws, 0.0);

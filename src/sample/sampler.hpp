@@ -48,6 +48,7 @@ struct SamplerOptions {
 
 struct SamplerResult {
   std::size_t chains = 0, draws = 0, dim = 0, temperatures = 1;
+  bool prior_level = false;            // every chain's hottest level stayed at beta = 0
   std::vector<double> x;               // chains x draws x dim, scaled, beta = 1
   std::vector<double> log_prior;       // chains x draws
   std::vector<double> log_likelihood;  // chains x draws
